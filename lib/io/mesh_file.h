@@ -1,0 +1,47 @@
+// Mesh files in and out, whatever the format: the one entry point the CLI uses.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh/poly_mesh.h"
+#include "slide/transfer.h"
+
+namespace skinslide {
+
+struct ObjText;       // io/obj_read.h
+struct GltfDocument;  // io/gltf.h
+
+enum class MeshFormat { Obj, Gltf, Glb };
+
+/// Which mesh of a multi-mesh file to use (glTF `--mesh`); empty = the only one.
+struct MeshReadOptions {
+  std::string mesh;
+};
+
+/// A mesh as read from a file, with what is needed to write an edited copy of that file.
+struct MeshFile {
+  std::string path;
+  MeshFormat format = MeshFormat::Obj;
+  PolyMesh mesh;                     ///< the surface skinslide works on
+  std::vector<long> face_lines;      ///< OBJ: source line of each face (1-based); else empty
+  std::shared_ptr<const ObjText> obj;        ///< set for OBJ
+  std::shared_ptr<const GltfDocument> gltf;  ///< set for glTF / GLB
+  std::string where_face(Index face) const;  ///< "bind.obj:301" or "bind.glb: triangle 57"
+};
+
+/// Format from the file name's extension (.obj, .gltf, .glb; case-insensitive).
+/// \throw Error(Usage) for any other extension.
+MeshFormat mesh_format(const std::string& path);
+
+/// Reads a mesh file. \throw Error(Input) naming the path (and line) on any malformed input.
+MeshFile read_mesh_file(const std::string& path, const MeshReadOptions& options = {});
+
+/// Writes `frame`'s file to `out_path` with the vertices of `slid` moved; everything else is
+/// kept as it was. Atomic: a temporary file in the target folder, renamed when complete.
+/// \throw Error(Output) when the file cannot be written.
+void write_slid_mesh_file(const MeshFile& frame, const SlidVertices& slid,
+                          const std::string& out_path);
+
+}  // namespace skinslide

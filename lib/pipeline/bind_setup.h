@@ -1,0 +1,50 @@
+// Bind-time set-up: patches, boundary loops, square boundary and the bind net, built once.
+// A frame is then a pure function of (BindSetup, frame positions): see slide_frame.h.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/types.h"
+#include "locate/id_raster.h"
+#include "mesh/poly_mesh.h"
+#include "pipeline/options.h"
+
+namespace skinslide {
+
+class FrameNetSolver;  // unwrap/bar_net.h
+
+/// One connected component of the selected faces, prepared for sliding. "Local" ids index
+/// `vertices`; a virtual hole node (Holes::Fill) is never part of these arrays.
+struct PatchNet {
+  std::vector<Index> faces;           ///< mesh face ids, ascending
+  std::vector<Index> vertices;        ///< mesh vertex ids, ascending (local id = position)
+  std::vector<std::array<Index, 2>> bars;  ///< polygon edges, local ids, (a < b), sorted
+  std::vector<Triangle> triangles;    ///< fan triangles of `faces`, local ids, face order
+  std::vector<Index> triangle_face;   ///< mesh face of each triangle
+  std::vector<Index> triangle_fan;    ///< k: triangle has face slots (0, k+1, k+2)
+  std::vector<std::vector<Index>> loops;  ///< boundary loops, local ids, each from its smallest
+  Index outer_loop = 0;               ///< index into `loops`
+  std::array<Index, 4> corners{};     ///< local ids of the square's corners (0,0) (1,0) (1,1) (0,1)
+  bool skipped = false;               ///< every vertex is on a boundary loop: nothing slides
+  Positions2 bind_net;                ///< 2D position of every local vertex
+  std::vector<Index> free_vertices;   ///< local ids that slide (not on any loop), ascending
+  double bind_diagonal = 0;           ///< bounding-box diagonal of the patch in the bind
+  std::shared_ptr<const FrameNetSolver> solver;  ///< reused by every frame
+};
+
+struct BindSetup {
+  SlideOptions options;
+  Index vertex_count = 0;
+  std::vector<PatchNet> patches;  ///< ordered by smallest mesh vertex id
+};
+
+/// Builds the bind set-up for the selected faces of `bind`.
+/// \param selections face-id lists (one per --patch file; components are split within each)
+/// \throw Error(Input) on topology errors (non-manifold, closed patch, ...); names the face/vertex.
+/// \throw Error(Numeric) when the bind net cannot be solved.
+BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
+                     const SlideOptions& options);
+
+}  // namespace skinslide

@@ -1,0 +1,35 @@
+// Tunables of the method, with their defaults (README "Options").
+#pragma once
+
+#include <string>
+
+namespace skinslide {
+
+/// How a bar's force density q follows its length L (Lmin, Lmax per patch).
+enum class Density {
+  Paper,    ///< q = max(1 - L/Lmax, q_floor): Yang & Zhang 2010, equation (2)
+  Inverse,  ///< q = max(Lmin/L, q_floor): long bars soft (also spelled `length`: q ~ 1/L)
+  Uniform,  ///< q = 1: Tutte's barycentric embedding
+};
+
+/// What the non-outer boundary loops (holes) do in the bind net.
+enum class Holes {
+  Free,  ///< the paper: hole vertices are free nodes
+  Fill,  ///< each hole gets a virtual free node joined to every loop vertex
+};
+
+struct SlideOptions {
+  Density density = Density::Inverse;
+  Holes holes = Holes::Fill;
+  double q_floor = 1e-3;         ///< lower bound of q (Paper, Inverse)
+  double cg_tolerance = 1e-12;   ///< CG stops at |r| <= tol * |b| (Eigen's criterion)
+  int cg_max_iterations = 2000;  ///< past it the frame net is solved directly (counted)
+  int lookup_size = 1024;        ///< ID image side in pixels
+};
+
+Density parse_density(const std::string& name);  ///< throws Usage on an unknown name
+Holes parse_holes(const std::string& name);      ///< throws Usage on an unknown name
+std::string to_string(Density d);
+std::string to_string(Holes h);
+
+}  // namespace skinslide

@@ -1,0 +1,37 @@
+// One frame: frame net (warm-started CG), ID image, point location, transfer.
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+#include "locate/id_raster.h"
+#include "pipeline/bind_setup.h"
+#include "slide/transfer.h"
+
+namespace skinslide {
+
+/// What happened to one patch in one frame.
+struct PatchFrameReport {
+  int cg_iterations = 0;      ///< CG iterations (the larger of the x and y solves)
+  double cg_residual = 0;     ///< final |r|/|b|
+  bool direct_solve = false;  ///< CG did not converge; the net was solved directly
+  int located_in_image = 0;   ///< vertices found through the ID image
+  int located_fallback = 0;   ///< vertices found by the nearest-triangle fallback
+  int frame_net_flips = 0;    ///< frame-net triangles of the minority orientation
+  double max_slide = 0;       ///< largest |slid - frame| (frame units)
+  double mean_slide = 0;      ///< mean over free vertices
+  Positions2 frame_net;       ///< 2D position of every local vertex in this frame's net
+  IdImage id_image;           ///< the lookup image (kept only with keep_id_image)
+};
+
+struct FrameResult {
+  SlidVertices slid;
+  std::vector<PatchFrameReport> patches;  ///< parallel to BindSetup::patches
+};
+
+/// Slides one frame. `frame` holds the deformed positions of every mesh vertex (#V).
+/// Pure: the result depends only on (setup, frame).
+/// \throw Error(Numeric) when a solve fails or a result is not finite.
+FrameResult slide_frame(const BindSetup& setup, const Positions3& frame, bool keep_id_image = false);
+
+}  // namespace skinslide
