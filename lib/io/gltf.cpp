@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/check.h"
@@ -105,10 +106,11 @@ std::string describe_meshes(const tinygltf::Model& model) {
   std::string s;
   for (std::size_t m = 0; m < model.meshes.size(); ++m) {
     std::size_t vertices = 0;
+    std::set<int> counted;  // primitives may share a POSITION accessor
     for (const tinygltf::Primitive& p : model.meshes[m].primitives) {
       const auto it = p.attributes.find("POSITION");
       if (it != p.attributes.end() && it->second >= 0 &&
-          it->second < static_cast<int>(model.accessors.size()))
+          it->second < static_cast<int>(model.accessors.size()) && counted.insert(it->second).second)
         vertices += model.accessors[it->second].count;
     }
     s += "\n  " + std::to_string(m) + " \"" + model.meshes[m].name + "\": " +
@@ -134,7 +136,7 @@ int choose_mesh(const tinygltf::Model& model, const std::string& path, const std
     found = static_cast<int>(m);
   }
   if (found >= 0) return found;
-  if (!want.empty() && std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
+  if (want.size() < 10 && std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
     const unsigned long m = std::stoul(want);
     if (m < model.meshes.size()) return static_cast<int>(m);
   }
@@ -372,6 +374,69 @@ Vec3 normalized_or(const Vec3& v, const Vec3& fallback) {
   return n > 0 && std::isfinite(n) ? Vec3(v / n) : fallback;
 }
 
+// Stores every changed accessor (store_accessor), updates its min/max, and re-points the chosen
+// mesh's primitives to any replacement. Returns old -> new accessor for the replaced ones.
+std::map<int, int> store_edits(tinygltf::Model& model, const GltfDocument& doc,
+                               const std::map<int, AccessorEdit>& edits,
+                               const std::map<int, std::vector<char>>& changed) {
+  std::map<int, int> moved;
+  tinygltf::Mesh& mesh = model.meshes[doc.mesh];
+  for (const auto& [accessor, c] : changed) {
+    const bool is_position =
+        std::any_of(doc.primitives.begin(), doc.primitives.end(),
+                    [&](const GltfPrimitive& p) { return p.position_accessor == accessor; });
+    const int stored = store_accessor(model, accessor, edits.at(accessor), c);
+    update_min_max(model, stored, is_position);
+    if (stored == accessor) continue;
+    moved[accessor] = stored;
+    for (const GltfPrimitive& gp : doc.primitives)
+      for (auto& [name, a] : mesh.primitives[gp.primitive].attributes)
+        if (a == accessor) a = stored;
+  }
+  return moved;
+}
+
+// Serialises `model` to memory and writes it atomically: never a partial file (STYLE.md
+// section 7). `.glb` gives a GLB; anything else a .gltf with one .bin per buffer beside it.
+void write_model(tinygltf::Model model, const std::string& source_path, const std::string& out_path) {
+  const bool binary = ends_with_glb(out_path);
+  ImageWriteContext ctx{fs::path(source_path).parent_path(), fs::path(out_path).parent_path()};
+  if (ctx.source_dir.empty()) ctx.source_dir = ".";
+  if (ctx.target_dir.empty()) ctx.target_dir = ".";
+  tinygltf::TinyGLTF writer;
+  writer.SetImageWriter(write_image_unchanged, &ctx);
+  if (binary && !model.buffers.empty()) model.buffers[0].uri.clear();  // buffer 0 -> BIN chunk
+  std::ostringstream out;
+  if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/!binary, binary) || !out)
+    throw Error(ErrorKind::Output, out_path + ": cannot write: glTF serialisation failed");
+  std::string text = std::move(out).str();
+  if (binary) {
+    write_file_atomic(out_path, text);
+    return;
+  }
+  // .gltf: the serialiser embeds buffers as data URIs; each becomes a .bin beside the file,
+  // named after it (several frames may share a folder, so never after the input's .bin).
+  const fs::path target(out_path);
+  const std::string stem = target.stem().string();
+  std::size_t cursor = 0;
+  std::vector<std::pair<std::string, const std::vector<unsigned char>*>> bins;
+  for (std::size_t b = 0; b < model.buffers.size(); ++b) {
+    const std::vector<unsigned char>& data = model.buffers[b].data;
+    const std::string embedded =
+        "\"data:application/octet-stream;base64," + base64(data.data(), data.size()) + "\"";
+    const std::size_t at = text.find(embedded, cursor);
+    SKINSLIDE_CHECK(at != std::string::npos, "serialised buffer not found in the glTF text");
+    const std::string name = stem + (b == 0 ? std::string() : "_" + std::to_string(b)) + ".bin";
+    const std::string quoted = "\"" + name + "\"";
+    text.replace(at, embedded.size(), quoted);
+    cursor = at + quoted.size();
+    bins.emplace_back((target.parent_path() / name).string(), &data);
+  }
+  for (const auto& [bin_path, data] : bins)
+    write_file_atomic(bin_path, std::string_view(reinterpret_cast<const char*>(data->data()), data->size()));
+  write_file_atomic(out_path, text);
+}
+
 }  // namespace
 
 void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std::string& out_path) {
@@ -480,56 +545,62 @@ void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std:
     }
   }
 
-  // Store each edited accessor; re-point the mesh's primitives where it was replaced.
-  tinygltf::Mesh& mesh = model.meshes[doc.mesh];
-  for (const auto& [accessor, c] : changed) {
-    const bool is_position = std::any_of(doc.primitives.begin(), doc.primitives.end(),
-                                         [&](const GltfPrimitive& p) { return p.position_accessor == accessor; });
-    const int stored = store_accessor(model, accessor, edits.at(accessor), c);
-    update_min_max(model, stored, is_position);
-    if (stored == accessor) continue;
-    for (const GltfPrimitive& gp : doc.primitives)
-      for (auto& [name, a] : mesh.primitives[gp.primitive].attributes)
-        if (a == accessor) a = stored;
-  }
+  store_edits(model, doc, edits, changed);
+  write_model(std::move(model), frame.path, out_path);
+}
 
-  // Serialise to memory, then write atomically: never a partial file (STYLE.md section 7).
-  const bool binary = ends_with_glb(out_path);
-  ImageWriteContext ctx{fs::path(frame.path).parent_path(), fs::path(out_path).parent_path()};
-  if (ctx.source_dir.empty()) ctx.source_dir = ".";
-  if (ctx.target_dir.empty()) ctx.target_dir = ".";
-  tinygltf::TinyGLTF writer;
-  writer.SetImageWriter(write_image_unchanged, &ctx);
-  if (binary && !model.buffers.empty()) model.buffers[0].uri.clear();  // buffer 0 -> BIN chunk
-  std::ostringstream out;
-  if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/!binary, binary) || !out)
-    throw Error(ErrorKind::Output, out_path + ": cannot write: glTF serialisation failed");
-  std::string text = std::move(out).str();
-  if (binary) {
-    write_file_atomic(out_path, text);
-    return;
+MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positions,
+                         const Positions3& raw_normals) {
+  SKINSLIDE_CHECK(character.gltf != nullptr, "posed_gltf_file on a file that is not glTF");
+  auto doc = std::make_shared<GltfDocument>(*character.gltf);
+  SKINSLIDE_CHECK(raw_positions.size() == doc->welded.size(), "one posed position per raw vertex");
+  SKINSLIDE_CHECK(raw_normals.empty() || raw_normals.size() == doc->welded.size(),
+                  "one posed normal per raw vertex");
+  tinygltf::Model& model = doc->model;
+  std::map<int, AccessorEdit> edits;
+  std::map<int, std::vector<char>> changed;
+  auto set_all = [&](int accessor, int components, const GltfPrimitive& gp, const Positions3& v) {
+    AccessorEdit& e = edits[accessor];
+    if (e.values.empty()) {
+      e.components = components;
+      e.values = gltf_accessor_values(model, accessor, character.path + ": accessor " + std::to_string(accessor));
+    }
+    for (Index i = 0; i < gp.raw_count; ++i)
+      for (int c = 0; c < 3; ++c) e.values[static_cast<std::size_t>(i) * components + c] = v[gp.raw_offset + i][c];
+    changed[accessor].assign(model.accessors[accessor].count, 1);
+  };
+  for (const GltfPrimitive& gp : doc->primitives) {
+    set_all(gp.position_accessor, 3, gp, raw_positions);
+    if (gp.normal_accessor >= 0 && !raw_normals.empty()) set_all(gp.normal_accessor, 3, gp, raw_normals);
   }
-  // .gltf: the serialiser embeds buffers as data URIs; each becomes a .bin beside the file,
-  // named after it (several frames may share a folder, so never after the input's .bin).
-  const fs::path target(out_path);
-  const std::string stem = target.stem().string();
-  std::size_t cursor = 0;
-  std::vector<std::pair<std::string, const std::vector<unsigned char>*>> bins;
-  for (std::size_t b = 0; b < model.buffers.size(); ++b) {
-    const std::vector<unsigned char>& data = model.buffers[b].data;
-    const std::string embedded =
-        "\"data:application/octet-stream;base64," + base64(data.data(), data.size()) + "\"";
-    const std::size_t at = text.find(embedded, cursor);
-    SKINSLIDE_CHECK(at != std::string::npos, "serialised buffer not found in the glTF text");
-    const std::string name = stem + (b == 0 ? std::string() : "_" + std::to_string(b)) + ".bin";
-    const std::string quoted = "\"" + name + "\"";
-    text.replace(at, embedded.size(), quoted);
-    cursor = at + quoted.size();
-    bins.emplace_back((target.parent_path() / name).string(), &data);
+  const std::map<int, int> moved = store_edits(model, *doc, edits, changed);
+  for (GltfPrimitive& gp : doc->primitives) {
+    if (moved.count(gp.position_accessor)) gp.position_accessor = moved.at(gp.position_accessor);
+    if (moved.count(gp.normal_accessor)) gp.normal_accessor = moved.at(gp.normal_accessor);
   }
-  for (const auto& [bin_path, data] : bins)
-    write_file_atomic(bin_path, std::string_view(reinterpret_cast<const char*>(data->data()), data->size()));
-  write_file_atomic(out_path, text);
+  // The posed copy is static: left skinned, a viewer would deform it a second time.
+  for (tinygltf::Node& node : model.nodes)
+    if (node.mesh == doc->mesh) node.skin = -1;
+  for (tinygltf::Primitive& prim : model.meshes[doc->mesh].primitives)
+    for (auto it = prim.attributes.begin(); it != prim.attributes.end();)
+      it = it->first.rfind("JOINTS_", 0) == 0 || it->first.rfind("WEIGHTS_", 0) == 0
+               ? prim.attributes.erase(it)
+               : std::next(it);
+  doc->raw_positions = raw_positions;
+
+  MeshFile out;
+  out.path = character.path;
+  out.format = character.format;
+  out.mesh = character.mesh;
+  std::vector<char> seen(out.mesh.vertex_count(), 0);
+  for (std::size_t r = 0; r < doc->welded.size(); ++r) {
+    const Index v = doc->welded[r];
+    if (seen[v]) continue;  // a welded vertex takes its first raw copy's pose
+    seen[v] = 1;
+    out.mesh.positions[v] = raw_positions[r];
+  }
+  out.gltf = std::move(doc);
+  return out;
 }
 
 }  // namespace skinslide

@@ -82,9 +82,10 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
 
   // The skin.
   int skin_index = -1;
-  for (const tinygltf::Node& node : model.nodes)
-    if (node.mesh == doc.mesh && node.skin >= 0) {
-      skin_index = node.skin;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    if (model.nodes[i].mesh == doc.mesh && model.nodes[i].skin >= 0) {
+      skin_index = model.nodes[i].skin;
+      rig.mesh_node = static_cast<Index>(i);
       break;
     }
   const std::string mesh_where = path + ": mesh " + std::to_string(doc.mesh);

@@ -75,6 +75,7 @@ struct Animation {
 /// Everything needed to pose the character's vertices.
 struct Rig {
   std::vector<RigNode> nodes;
+  Index mesh_node = -1;      ///< the node that instantiates the mesh with `skin`
   Skin skin;
   Influences influences;     ///< one entry per raw vertex
   Positions3 bind_positions; ///< raw vertex positions as stored (the bind pose)

@@ -80,6 +80,22 @@ Pose skinned_pose(const Rig& rig, const std::vector<Mat4>& joint) {
   return pose;
 }
 
+Pose to_node_space(const Pose& pose, const Mat4& node_world) {
+  const Mat4 inv = node_world.inverse();
+  const Eigen::Matrix3d a = node_world.topLeftCorner<3, 3>().transpose();
+  Pose out;
+  out.positions.reserve(pose.positions.size());
+  for (const Vec3& p : pose.positions)
+    out.positions.push_back(inv.topLeftCorner<3, 3>() * p + inv.topRightCorner<3, 1>());
+  out.normals.reserve(pose.normals.size());
+  for (const Vec3& n : pose.normals) {
+    const Vec3 m = a * n;
+    const double len = m.norm();
+    out.normals.push_back(len > 0 && std::isfinite(len) ? Vec3(m / len) : n);
+  }
+  return out;
+}
+
 Pose pose_at(const Rig& rig, const Animation* animation, double t) {
   const std::vector<Mat4> world = world_matrices(rig, animated_transforms(rig, animation, t));
   return skinned_pose(rig, joint_matrices(rig.skin, world));

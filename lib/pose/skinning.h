@@ -31,6 +31,11 @@ struct Pose {
 /// \throw Error(Numeric) when a result is not finite.
 Pose skinned_pose(const Rig& rig, const std::vector<Mat4>& joint);
 
+/// `pose` (in the joints' world space) expressed in the space of a node whose world matrix is
+/// `node_world`: positions by its inverse, normals by its transpose (renormalised). Skinning
+/// ignores the mesh node's transform; this undoes the one a viewer applies to an unskinned copy.
+Pose to_node_space(const Pose& pose, const Mat4& node_world);
+
 /// The character at time `t` of `animation` (null = the rest pose: the nodes' stored transforms).
 Pose pose_at(const Rig& rig, const Animation* animation, double t);
 
