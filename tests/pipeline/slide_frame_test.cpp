@@ -105,7 +105,9 @@ TEST_P(SampleCases, DefaultSlideKeepsTheInvariants) {
       for (Index v : p.free_vertices) free[p.vertices[v]] = 1;
     for (size_t v = 0; v < frame.size(); ++v) {
       ASSERT_TRUE(out[v].allFinite());
-      if (!free[v]) EXPECT_EQ(out[v], frame[v]) << "border, hole and outside vertices stay";
+      if (!free[v]) {
+        EXPECT_EQ(out[v], frame[v]) << "border, hole and outside vertices stay";
+      }
     }
     EXPECT_TRUE(std::is_sorted(r.slid.vertex.begin(), r.slid.vertex.end()));
     for (size_t p = 0; p < setup.patches.size(); ++p) {
@@ -183,7 +185,9 @@ TEST(SlideFrame, AHalfStretchedSheetSlidesTowardsTheStretchedSide) {
   ASSERT_EQ(r.slid.vertex.size(), 49u);
   for (size_t k = 0; k < r.slid.vertex.size(); ++k) {
     const Index v = r.slid.vertex[k];
-    if (bind.positions[v].x() == 4) EXPECT_GT(r.slid.position[k].x(), frame[v].x()) << v;
+    if (bind.positions[v].x() == 4) {
+      EXPECT_GT(r.slid.position[k].x(), frame[v].x()) << v;
+    }
     EXPECT_EQ(r.slid.position[k].z(), 0.0);
   }
   const Positions3 out = apply_slide(frame, r.slid);
