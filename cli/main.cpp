@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <clocale>
 #include <cstdio>
 #include <filesystem>
@@ -19,10 +20,14 @@
 
 #include "core/error.h"
 #include "core/version.h"
+#include "io/atomic_write.h"
+#include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "io/number_format.h"
+#include "io/obj_write.h"
 #include "io/patch_file.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/rig_frames.h"
 #include "pipeline/slide_frame.h"
 #include "progress.h"
 
@@ -45,6 +50,12 @@ struct CliOptions {
   unsigned threads = 0;
   bool quiet = false;
   bool verbose = false;
+  std::string mesh;       // glTF: which mesh (name or index); empty = the only one
+  bool rig = false;       // --animation given: the frames are BIND posed by its skin
+  std::string animation;  // clip name or index
+  double fps = 0;         // 0 = the clip's key times
+  bool keyframes = false; // --keyframes: the default, spelled out
+  std::string format = "glb";  // of the slid rig frames: obj or glb
 };
 
 std::string fmt(double x) {
@@ -124,10 +135,14 @@ FrameSummary summarise(const FrameResult& r) {
   return s;
 }
 
+std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
+                                      const FrameResult& result, const std::string& frame_path,
+                                      const std::string& out_path);
+
 // Reads, checks, slides and writes one frame; returns the log lines for it.
 std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind, const CliOptions& o,
                                    const std::string& frame_path, const std::string& out_path) {
-  const MeshFile frame = read_mesh_file(frame_path);
+  const MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
   FrameResult result;
   try {
@@ -136,6 +151,32 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
     throw Error(e.kind(), frame_path + ": " + e.what());
   }
   write_slid_mesh_file(frame, result.slid, out_path);
+  return frame_report(setup, o, result, frame_path, out_path);
+}
+
+// Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB.
+std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& character,
+                                       const RigClip& clip, const CliOptions& o, size_t k,
+                                       const std::string& out_path) {
+  const std::string label = clip.names[k] + " (t = " + fmt(clip.times[k]) + " s)";
+  const MeshFile frame = rig_frame(character, clip, k);
+  FrameResult result;
+  try {
+    result = slide_frame(setup, frame.mesh.positions);
+  } catch (const Error& e) {
+    throw Error(e.kind(), label + ": " + e.what());
+  }
+  if (o.format == "obj")
+    write_file_atomic(out_path, obj_text(frame.mesh, apply_slide(frame.mesh.positions, result.slid),
+                                         character.path + ", " + label + ", slid"));
+  else
+    write_gltf_file(frame, result.slid, out_path);
+  return frame_report(setup, o, result, label, out_path);
+}
+
+std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
+                                      const FrameResult& result, const std::string& frame_path,
+                                      const std::string& out_path) {
   const FrameSummary s = summarise(result);
   std::vector<std::string> lines;
   lines.push_back("skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
@@ -162,9 +203,25 @@ int run(const CliOptions& o) {
   const cli::Verbosity verbosity =
       o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
   const SlideOptions options = slide_options(o);
-  const std::vector<std::string> outputs = output_paths(o);
+  std::vector<std::string> outputs = o.rig ? std::vector<std::string>{} : output_paths(o);
 
-  const MeshFile bind = read_mesh_file(o.bind);
+  // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
+  // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
+  const MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
+  RigClip clip;
+  if (o.rig) {
+    clip = rig_clip(bind, {o.animation, o.fps});
+    std::vector<std::string> inputs = o.patches;
+    inputs.push_back(o.bind);
+    for (const std::string& name : clip.names) {
+      const fs::path target = fs::path(o.output) / (name + "." + o.format);
+      for (const std::string& in : inputs)
+        if (same_file(target, in))
+          throw Error(ErrorKind::Usage, "output " + target.string() + " would overwrite input " +
+                                            in + "; choose another --output folder");
+      outputs.push_back(target.string());
+    }
+  }
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
@@ -186,7 +243,7 @@ int run(const CliOptions& o) {
     }
   make_output_dir(o.output);
 
-  const size_t count = o.frames.size();
+  const size_t count = outputs.size();
   unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
   threads = static_cast<unsigned>(std::min<size_t>(threads, count));
   cli::Progress progress(count, verbosity, isatty(STDERR_FILENO) != 0);
@@ -196,12 +253,14 @@ int run(const CliOptions& o) {
   auto worker = [&] {
     for (size_t i; !stop && (i = next++) < count;) {
       try {
-        progress.done(i, run_frame(setup, bind, o, o.frames[i], outputs[i]));
+        progress.done(i, o.rig ? run_rig_frame(setup, bind, clip, o, i, outputs[i])
+                               : run_frame(setup, bind, o, o.frames[i], outputs[i]));
       } catch (const Error& e) {
         errors[i] = std::make_unique<Error>(e);
         stop = true;  // fail fast: a farm task with a bad frame should fail, not half-succeed
       } catch (const std::exception& e) {
-        errors[i] = std::make_unique<Error>(ErrorKind::Internal, o.frames[i] + ": " + e.what());
+        errors[i] = std::make_unique<Error>(ErrorKind::Internal,
+                                            (o.rig ? clip.names[i] : o.frames[i]) + ": " + e.what());
         stop = true;
       }
     }
@@ -229,7 +288,11 @@ int main(int argc, char** argv) {
       "Flattens each patch of the bind mesh and of every frame onto the unit square and moves the\n"
       "frame's patch vertices back to where the bind's flattening puts them, on the frame's surface.\n"
       "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, `12-40`,\n"
-      "`pBody.f[12:40]`; whitespace or commas between them, `#` comments.",
+      "`pBody.f[12:40]`; whitespace or commas between them, `#` comments. For .gltf/.glb the faces\n"
+      "are the triangles of the mesh's triangle primitives, in primitive order (vertices welded by\n"
+      "position for connectivity only).\n"
+      "A rigged glTF character can be its own frame source:\n"
+      "  skinslide --patch P.txt --animation NAME|INDEX [--fps N | --keyframes] character.glb",
       "skinslide"};
   app.set_version_flag("--version", std::string("skinslide ") + version());
   app.get_formatter()->column_width(36);
@@ -240,11 +303,40 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false)
       ->type_name("FILE")
       ->group(in);
-  app.add_option("bind", o.bind, "Bind mesh (.obj)")->required()->type_name("BIND")->group(in);
-  app.add_option("frames", o.frames, "Deformed frames: the bind mesh with moved vertices")
-      ->required()
-      ->type_name("FRAME...")
-      ->group(in);
+  app.add_option("bind", o.bind, "Bind mesh (.obj, .gltf, .glb)")->required()->type_name("BIND")->group(in);
+  auto* frames_opt =
+      app.add_option("frames", o.frames,
+                     "Deformed frames: the bind mesh with moved vertices (none with --animation)")
+          ->type_name("FRAME...")
+          ->group(in);
+
+  auto* gl = "glTF";
+  app.add_option("--mesh", o.mesh, "Mesh of a .gltf/.glb holding several (name, else index)")
+      ->type_name("NAME|INDEX")
+      ->group(gl);
+  auto* anim = app.add_option("--animation", o.animation,
+                              "BIND is a rigged glTF character: pose its skin at each sampled time "
+                              "of this clip (name, else index) and slide those frames")
+                   ->type_name("NAME|INDEX")
+                   ->excludes(frames_opt)
+                   ->group(gl);
+  auto* fps = app.add_option("--fps", o.fps,
+                             "Sample the clip every 1/N s from its first key to its last")
+                  ->check(CLI::Range(0.001, 100000.0))
+                  ->type_name("N")
+                  ->needs(anim)
+                  ->group(gl);
+  app.add_flag("--keyframes", o.keyframes, "Sample the clip at its key times (the default)")
+      ->needs(anim)
+      ->excludes(fps)
+      ->group(gl);
+  app.add_option("--format", o.format,
+                 "Format of the slid frames of --animation, named <character>.<frame>.<format>, "
+                 "frame numbers from 0000")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"obj", "glb"}))
+      ->needs(anim)
+      ->group(gl);
 
   auto* out = "Output";
   app.add_option("-o,--output", o.output, "Folder for the slid frames (same file names)")
@@ -294,6 +386,15 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+    o.rig = anim->count() > 0;
+    if (!o.rig && o.frames.empty())
+      throw CLI::ValidationError("FRAME...", "give at least one FRAME, or --animation with a rigged glTF BIND");
+    if (o.rig) {
+      std::string ext = fs::path(o.bind).extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (ext != ".gltf" && ext != ".glb")
+        throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + o.bind);
+    }
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::fprintf(stderr, "skinslide: error: %s\nRun with --help for the options.\n", e.what());
