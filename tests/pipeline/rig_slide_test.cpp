@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <ostream>
 #include <set>
 
 #include <Eigen/LU>
@@ -73,6 +74,9 @@ struct CharacterCase {
   double radius;
   std::vector<Index> faces;
 };
+
+// ctest lists the case by its file, not its bytes.
+void PrintTo(const CharacterCase& c, std::ostream* os) { *os << c.file; }
 
 std::vector<Index> range(Index a, Index b) {
   std::vector<Index> r;
