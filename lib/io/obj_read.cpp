@@ -1,5 +1,6 @@
 #include "io/obj_read.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -30,6 +31,21 @@ void tokenize(const std::string& bytes, size_t begin, size_t end, std::vector<To
   }
 }
 
+std::string count_of(size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// True when faces[] names a vertex twice; `dup` gets the (0-based) vertex. Sorting a copy keeps a
+// face line with thousands of entries linear-logarithmic.
+bool repeated_vertex(const std::vector<Index>& face, std::vector<Index>& scratch, Index& dup) {
+  scratch.assign(face.begin(), face.end());
+  std::sort(scratch.begin(), scratch.end());
+  const auto it = std::adjacent_find(scratch.begin(), scratch.end());
+  if (it == scratch.end()) return false;
+  dup = *it;
+  return true;
+}
+
 std::string quoted(std::string_view t) {
   constexpr size_t kMax = 40;
   std::string s(t.substr(0, kMax));
@@ -42,14 +58,23 @@ std::string quoted(std::string_view t) {
 ObjMesh parse_obj(const std::string& path, std::string bytes) {
   ObjMesh obj;
   std::vector<Token> tok;
-  std::vector<Index> face;
+  std::vector<Index> face, scratch;
   std::vector<std::pair<long, long long>> forward_refs;  // (line, 1-based index)
   long line = 0;
   size_t pos = 0;
   const size_t n = bytes.size();
+  if (n == 0) throw_input(path, 0, "the file is empty (0 bytes): not an OBJ mesh");
+  size_t eol = 0;
+  // A bad last line without an end of line is most likely a file cut short (a copy or an export
+  // that did not finish): say so.
+  auto fail = [&](const std::string& what) {
+    const bool cut = eol == n && bytes[n - 1] != '\n';
+    throw_input(path, line,
+                cut ? what + " (the last line has no end of line: is the file truncated?)" : what);
+  };
   while (pos < n) {
     ++line;
-    size_t eol = bytes.find('\n', pos);
+    eol = bytes.find('\n', pos);
     if (eol == std::string::npos) eol = n;
     const std::string_view raw(bytes.data() + pos, eol - pos);
     if (raw.find('\0') != std::string_view::npos)
@@ -62,14 +87,13 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
     const std::string_view key = tok[0].text;
     if (key == "v") {
       if (tok.size() < 4)
-        throw_input(path, line,
-                    "vertex has " + std::to_string(tok.size() - 1) + " coordinates; 3 needed");
+        fail("vertex has " + count_of(tok.size() - 1, "coordinate", "coordinates") + "; 3 needed");
       Vec3 p;
       std::array<std::uint64_t, 6> span{};
       for (int k = 0; k < 3; ++k) {
         const Token& t = tok[1 + k];
         const auto x = parse_double(t.text);
-        if (!x) throw_input(path, line, "vertex coordinate " + quoted(t.text) + " is not a number");
+        if (!x) fail("vertex coordinate " + quoted(t.text) + " is not a number");
         if (!std::isfinite(*x))
           throw_input(path, line, "vertex coordinate " + quoted(t.text) + " is not finite");
         p[k] = *x;
@@ -81,15 +105,14 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
       obj.vertex_lines.push_back(line);
     } else if (key == "f") {
       if (tok.size() < 4)
-        throw_input(path, line,
-                    "face has " + std::to_string(tok.size() - 1) + " vertices; at least 3 needed");
+        fail("face has " + count_of(tok.size() - 1, "vertex", "vertices") + "; at least 3 needed");
       face.clear();
       const long long nv = static_cast<long long>(obj.mesh.positions.size());
       for (size_t k = 1; k < tok.size(); ++k) {
         const std::string_view entry = tok[k].text;
         const std::string_view first = entry.substr(0, entry.find('/'));
         const auto idx = parse_integer(first);
-        if (!idx) throw_input(path, line, "face entry " + quoted(entry) + " is not a vertex index");
+        if (!idx) fail("face entry " + quoted(entry) + " is not a vertex index");
         long long v = *idx;
         if (v == 0) throw_input(path, line, "face index 0 (OBJ indices start at 1)");
         if (v < 0) {
@@ -105,24 +128,23 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
         if (v > 0x7fffffffLL) throw_input(path, line, "face index " + std::to_string(*idx) + " is too large");
         face.push_back(static_cast<Index>(v));
       }
-      for (size_t a = 0; a < face.size(); ++a)
-        for (size_t b = a + 1; b < face.size(); ++b)
-          if (face[a] == face[b])
-            throw_input(path, line,
-                        "face uses vertex " + std::to_string(face[a] + 1) +
-                            " twice (degenerate face)");
+      Index dup = 0;
+      if (repeated_vertex(face, scratch, dup))
+        fail("face uses vertex " + std::to_string(dup + 1) + " twice (degenerate face)");
       obj.mesh.add_face(face);
       obj.face_lines.push_back(line);
     }
     // Every other statement (vt, vn, g, o, s, usemtl, mtllib, l, p, ...) is kept as text only.
   }
   const long long nv = static_cast<long long>(obj.mesh.positions.size());
+  if (nv == 0) throw_input(path, 0, "no vertices (`v` lines): not an OBJ mesh");
+  const bool cut = bytes.back() != '\n';
   for (const auto& [ln, v] : forward_refs)
     if (v > nv)
       throw_input(path, ln,
                   "face index " + std::to_string(v) + " is out of range (the file has " +
-                      std::to_string(nv) + " vertices)");
-  if (nv == 0) throw_input(path, 0, "no vertices (`v` lines): empty or not an OBJ file");
+                      std::to_string(nv) + " vertices" +
+                      (cut ? "; its last line has no end of line: is the file truncated?)" : ")"));
   obj.text.bytes = std::move(bytes);
   return obj;
 }

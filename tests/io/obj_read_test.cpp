@@ -48,7 +48,16 @@ TEST(ObjRead, RejectsBadInputWithFileAndLine) {
   EXPECT_EQ(error_of("v 0 0 0\nf -1 -2 -3\n"),
             "t.obj:2: relative face index -2 reaches before vertex 1 (1 vertices defined so far)");
   EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nf 1 2 1\n"), "t.obj:3: face uses vertex 1 twice (degenerate face)");
-  EXPECT_EQ(error_of(""), "t.obj: no vertices (`v` lines): empty or not an OBJ file");
+  EXPECT_EQ(error_of(""), "t.obj: the file is empty (0 bytes): not an OBJ mesh");
+  EXPECT_EQ(error_of("# nothing\nvt 0 0\n"), "t.obj: no vertices (`v` lines): not an OBJ mesh");
+  // A bad last line without an end of line: the file was most likely cut short.
+  EXPECT_EQ(error_of("v 0 0 0\nv 1 0"),
+            "t.obj:2: vertex has 2 coordinates; 3 needed (the last line has no end of line: is the "
+            "file truncated?)");
+  EXPECT_EQ(
+      error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4"),
+      "t.obj:4: face index 4 is out of range (the file has 3 vertices; its last line has no end "
+      "of line: is the file truncated?)");
   EXPECT_EQ(error_of(std::string("v 0 0 0\n\x01\x00\x02", 11)),
             "t.obj:2: binary data (NUL byte): not a text OBJ file");
   EXPECT_EQ(error_of("v 0 0 0\nf 1 a 3\n"), "t.obj:2: face entry 'a' is not a vertex index");
