@@ -197,13 +197,33 @@ int attribute(const tinygltf::Primitive& prim, const char* name) {
   return it == prim.attributes.end() ? -1 : it->second;
 }
 
+std::string type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "type " + std::to_string(type);
+  }
+}
+
 void check_attribute(const tinygltf::Model& model, int accessor, int type, Index count,
                      const std::string& where) {
   if (accessor < 0) return;
   if (accessor >= static_cast<int>(model.accessors.size())) fail(where, "does not exist");
   const tinygltf::Accessor& acc = model.accessors[accessor];
-  if (acc.type != type)
-    fail(where, "has type " + std::to_string(acc.type) + ", expected " + std::to_string(type));
+  if (acc.type != type) fail(where, "is " + type_name(acc.type) + ", expected " + type_name(type));
   if (count >= 0 && static_cast<Index>(acc.count) != count)
     fail(where, "has " + std::to_string(acc.count) + " elements, POSITION has " +
                     std::to_string(count));
@@ -254,6 +274,16 @@ MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options)
     if (gp.position_accessor < 0) fail(where, "has no POSITION attribute");
     const std::string pw = where + ": POSITION accessor " + std::to_string(gp.position_accessor);
     check_attribute(model, gp.position_accessor, TINYGLTF_TYPE_VEC3, -1, pw);
+    // glTF 2.0 positions are floats; KHR_mesh_quantization adds (normalized or not) 8- and
+    // 16-bit integers. 32-bit integers and anything else are not positions a viewer can read.
+    const int position_type = model.accessors[gp.position_accessor].componentType;
+    if (position_type != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+        position_type != TINYGLTF_COMPONENT_TYPE_BYTE &&
+        position_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        position_type != TINYGLTF_COMPONENT_TYPE_SHORT &&
+        position_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+      fail(pw, "has component type " + std::to_string(position_type) +
+                   "; positions are float (5126), or 8/16-bit integers with KHR_mesh_quantization");
     const std::vector<double> pos = gltf_accessor_values(model, gp.position_accessor, pw);
     gp.raw_count = static_cast<Index>(pos.size() / 3);
     gp.raw_offset = static_cast<Index>(doc->raw_positions.size());
@@ -382,9 +412,11 @@ std::map<int, int> store_edits(tinygltf::Model& model, const GltfDocument& doc,
   std::map<int, int> moved;
   tinygltf::Mesh& mesh = model.meshes[doc.mesh];
   for (const auto& [accessor, c] : changed) {
+    // A named copy: clang 14 cannot capture a structured binding in a lambda.
+    const int edited = accessor;
     const bool is_position =
         std::any_of(doc.primitives.begin(), doc.primitives.end(),
-                    [&](const GltfPrimitive& p) { return p.position_accessor == accessor; });
+                    [&](const GltfPrimitive& p) { return p.position_accessor == edited; });
     const int stored = store_accessor(model, accessor, edits.at(accessor), c);
     update_min_max(model, stored, is_position);
     if (stored == accessor) continue;
