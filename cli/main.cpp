@@ -27,6 +27,7 @@
 #include "io/obj_write.h"
 #include "io/patch_file.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/frame_ranges.h"
 #include "pipeline/rig_frames.h"
 #include "pipeline/slide_frame.h"
 #include "progress.h"
@@ -48,6 +49,8 @@ struct CliOptions {
   int cg_max_iterations = 2000;
   int lookup_size = 1024;
   unsigned threads = 0;
+  std::string frame_ranges;  // --frames: empty = every frame
+  bool keep_going = false;
   bool quiet = false;
   bool verbose = false;
   std::string mesh;       // glTF: which mesh (name or index); empty = the only one
@@ -100,6 +103,37 @@ void make_output_dir(const std::string& dir) {
     throw Error(ErrorKind::Output, dir + ": cannot write: exists and is not a folder");
   fs::create_directories(dir, ec);
   if (ec) throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
+}
+
+// Indices of the frames that --frames selects, in list order, by the frame number in each
+// output's file name (an OBJ frame's own name; a rig frame's <character>.<frame>).
+std::vector<size_t> chosen_frames(const std::vector<FrameRange>& ranges,
+                                  const std::vector<std::string>& outputs,
+                                  const std::vector<std::string>& labels, const std::string& spec) {
+  std::vector<size_t> chosen;
+  if (ranges.empty()) {
+    for (size_t i = 0; i < outputs.size(); ++i) chosen.push_back(i);
+    return chosen;
+  }
+  long long lowest = 0, highest = 0;
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const auto n = frame_number(outputs[i]);
+    if (!n)
+      throw Error(ErrorKind::Usage, "--frames: " + labels[i] +
+                                        " has no frame number in its file name (expected e.g. "
+                                        "name.0042.obj); drop --frames or rename the frames");
+    lowest = i == 0 ? *n : std::min(lowest, *n);
+    highest = i == 0 ? *n : std::max(highest, *n);
+    // A range past the frames present selects what there is: a farm's last chunk may run past
+    // the end of the shot.
+    if (in_frame_ranges(ranges, *n)) chosen.push_back(i);
+  }
+  if (chosen.empty())
+    throw Error(ErrorKind::Usage, "--frames " + spec + " selects none of the " +
+                                      std::to_string(outputs.size()) + " frames (numbered " +
+                                      std::to_string(lowest) + " to " + std::to_string(highest) +
+                                      ")");
+  return chosen;
 }
 
 SlideOptions slide_options(const CliOptions& o) {
@@ -203,7 +237,11 @@ int run(const CliOptions& o) {
   const cli::Verbosity verbosity =
       o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
   const SlideOptions options = slide_options(o);
+  const std::vector<FrameRange> ranges =
+      o.frame_ranges.empty() ? std::vector<FrameRange>{} : parse_frame_ranges(o.frame_ranges);
   std::vector<std::string> outputs = o.rig ? std::vector<std::string>{} : output_paths(o);
+  std::vector<size_t> chosen;
+  if (!o.rig) chosen = chosen_frames(ranges, outputs, o.frames, o.frame_ranges);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
   // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
@@ -221,6 +259,7 @@ int run(const CliOptions& o) {
                                             in + "; choose another --output folder");
       outputs.push_back(target.string());
     }
+    chosen = chosen_frames(ranges, outputs, clip.names, o.frame_ranges);
   }
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
@@ -243,7 +282,7 @@ int run(const CliOptions& o) {
     }
   make_output_dir(o.output);
 
-  const size_t count = outputs.size();
+  const size_t count = chosen.size();
   unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
   threads = static_cast<unsigned>(std::min<size_t>(threads, count));
   cli::Progress progress(count, verbosity, isatty(STDERR_FILENO) != 0);
@@ -251,29 +290,48 @@ int run(const CliOptions& o) {
   std::atomic<bool> stop{false};
   std::vector<std::unique_ptr<Error>> errors(count);
   auto worker = [&] {
-    for (size_t i; !stop && (i = next++) < count;) {
+    for (size_t j; !stop && (j = next++) < count;) {
+      const size_t i = chosen[j];
       try {
-        progress.done(i, o.rig ? run_rig_frame(setup, bind, clip, o, i, outputs[i])
+        progress.done(j, o.rig ? run_rig_frame(setup, bind, clip, o, i, outputs[i])
                                : run_frame(setup, bind, o, o.frames[i], outputs[i]));
+        continue;
       } catch (const Error& e) {
-        errors[i] = std::make_unique<Error>(e);
-        stop = true;  // fail fast: a farm task with a bad frame should fail, not half-succeed
+        errors[j] = std::make_unique<Error>(e);
+      } catch (const std::bad_alloc&) {
+        errors[j] = std::make_unique<Error>(
+            ErrorKind::Internal, (o.rig ? clip.names[i] : o.frames[i]) + ": out of memory");
       } catch (const std::exception& e) {
-        errors[i] = std::make_unique<Error>(ErrorKind::Internal,
-                                            (o.rig ? clip.names[i] : o.frames[i]) + ": " + e.what());
-        stop = true;
+        errors[j] = std::make_unique<Error>(
+            ErrorKind::Internal, (o.rig ? clip.names[i] : o.frames[i]) + ": " + e.what());
       }
+      // Fail fast by default: a farm task with a bad frame should fail, not half-succeed
+      // (README "Exit codes"). --keep-going writes every good frame and names every bad one.
+      if (o.keep_going)
+        progress.done(j, {});
+      else
+        stop = true;
     }
   };
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread& t : pool) t.join();
   progress.finish();
+  size_t failed = 0;
+  const Error* first = nullptr;
   for (const auto& e : errors)
-    if (e) throw *e;  // the first bad frame in list order
-  if (verbosity != cli::Verbosity::Quiet)
-    std::fprintf(stderr, "skinslide: %zu frames slid in %.2f s -> %s\n", count,
+    if (e) {
+      ++failed;
+      if (!first) first = e.get();  // the first bad frame in list order decides the exit code
+    }
+  if (first && !o.keep_going) throw *first;
+  for (const auto& e : errors)
+    if (e) std::fprintf(stderr, "skinslide: error: %s\n", e->what());
+  if (verbosity != cli::Verbosity::Quiet || failed > 0)
+    std::fprintf(stderr, "skinslide: %zu frames slid%s in %.2f s -> %s\n", count - failed,
+                 failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
                  progress.elapsed_seconds(), o.output.c_str());
+  if (first) return exit_code(first->kind());
   return 0;
 }
 
@@ -379,6 +437,15 @@ int main(int argc, char** argv) {
   app.add_option("-j,--threads", o.threads, "Frames processed at once; 0 = all cores")
       ->capture_default_str()
       ->check(CLI::Range(0u, 1024u))
+      ->group(run_group);
+  app.add_option("--frames", o.frame_ranges,
+                 "Only the frames whose file names carry these numbers (name.0042.obj -> 42): "
+                 "1-100, 1-100:5 (every 5th), 3,7,12-20; ranges past the frames given are clamped")
+      ->type_name("RANGES")
+      ->group(run_group);
+  app.add_flag("--keep-going", o.keep_going,
+               "Write every good frame and name every bad one, instead of stopping at the first "
+               "(exit code: the first bad frame's)")
       ->group(run_group);
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run_group);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run_group);
