@@ -9,6 +9,10 @@ packages=(
   libstb-dev libgtest-dev
   python3-numpy python3-scipy
 )
+# scripts/fuzz.sh only (not the main build): clang with libFuzzer and the sanitizer runtimes.
+if [ "${SKINSLIDE_FUZZ_DEPS:-0}" = 1 ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,283 @@
+#!/usr/bin/env bash
+# The bad-input catalogue: each case runs skinslide on a small broken (or tricky but valid) input
+# and checks the exit code (README "Exit codes"), a substring of the message (file, line, what is
+# wrong), that a failed run leaves no output for what failed, and that nothing written holds a
+# NaN or an infinity. Inputs are the files beside this script and variants of grid.obj made here.
+# Usage: SKINSLIDE=path/to/skinslide tests/bad_inputs/run.sh
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+tmp=$(mktemp -d)
+mkdir -p "$tmp/out"
+trap 'chmod -R u+rwx "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
+passed=0
+runner=()  # a command prefix for skinslide (set for the permission cases)
+failed=0
+skipped=0
+cd "$here"
+
+fail() {
+  failed=$((failed + 1))
+  echo "FAIL: $*" >&2
+}
+
+# expect NAME CODE SUBSTRING ARGS...: runs `skinslide -o OUT ARGS` with OUT a fresh folder (unless
+# ARGS set -o), checks the exit code and that stderr contains SUBSTRING; on an error, that no
+# frame was written (unless --keep-going); always, that every output is finite.
+expect() {
+  local name=$1 code=$2 text=$3
+  shift 3
+  local out=$tmp/out/$name
+  if [ "$1" = -o ]; then
+    out=$2
+  else
+    set -- -o "$out" "$@"
+  fi
+  "${runner[@]}" "$bin" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local rc=$?
+  local ok=1
+  if [ "$rc" -ne "$code" ]; then
+    fail "$name: exit $rc, expected $code"
+    ok=0
+  elif ! grep -qF -- "$text" "$tmp/stderr"; then
+    fail "$name: stderr lacks '$text'"
+    ok=0
+  elif [ -s "$tmp/stdout" ]; then
+    fail "$name: wrote to stdout"
+    ok=0
+  elif [ "$code" -ne 0 ] && [ -d "$out" ] && ! grep -q -- "--keep-going" <<<"$*" &&
+    [ -n "$(find "$out" -type f)" ]; then
+    fail "$name: a failed run left files: $(ls -A "$out")"
+    ok=0
+  elif [ -d "$out" ] && grep -rqiE '(^|[ /])[-+]?(nan|inf)' "$out"; then
+    fail "$name: an output holds a NaN or an infinity"
+    ok=0
+  fi
+  if [ "$ok" -eq 1 ]; then
+    passed=$((passed + 1))
+  else
+    sed 's/^/    /' "$tmp/stderr" >&2
+  fi
+}
+
+# variant NAME SED-SCRIPT [SOURCE]: a copy of SOURCE (grid.obj) edited by sed, as $tmp/NAME.
+variant() {
+  sed -e "$2" "${3:-grid.obj}" >"$tmp/$1"
+}
+
+B=grid.obj
+F=grid.0001.obj
+P=all.txt
+# grid.obj: line 1 a comment, lines 2-17 the 16 vertices (vertex k on line k+1), lines 18-26 the
+# 9 quads (face k on line k+18); vertices 5, 6, 9 and 10 (0-based) are inside the patch.
+
+# --- OBJ: empty, truncated, garbage -------------------------------------------------------------
+: >"$tmp/empty.obj"
+expect obj_empty 3 "empty.obj: the file is empty (0 bytes)" --patch $P "$tmp/empty.obj" $F
+head -c 47 $F >"$tmp/cut_vertex.0001.obj"  # ends inside line 3, "v 1.2 0 0.1"
+expect obj_cut_in_vertex 3 "cut_vertex.0001.obj:3: vertex has 2 coordinates; 3 needed (the last line has no end of line: is the file truncated?)" --patch $P $B "$tmp/cut_vertex.0001.obj"
+head -n 10 $F >"$tmp/cut_lines.0001.obj"
+expect obj_cut_at_line 3 "cut_lines.0001.obj: has 9 vertices; the bind (grid.obj) has 16" --patch $P $B "$tmp/cut_lines.0001.obj"
+head -c 298 $F >"$tmp/cut_face.0001.obj"  # ends inside the last face line: "f 11 1"
+expect obj_cut_in_face 3 "cut_face.0001.obj:26: face has 2 vertices; at least 3 needed (the last line has no end of line: is the file truncated?)" --patch $P $B "$tmp/cut_face.0001.obj"
+printf '\x7fELF\x02\x01\x01\x00\x00\x00\x00\x00\x03\x00>\x00\x01\x00\x00\x00v 1 2 3\n' >"$tmp/garbage.obj"
+expect obj_binary_garbage 3 "garbage.obj:1: binary data (NUL byte): not a text OBJ file" --patch $P "$tmp/garbage.obj" $F
+printf '\x89PNG\r\n\x1a\n\xff\xfe\xfd junk\n' >"$tmp/png.obj"
+expect obj_not_obj_text 3 "png.obj: no vertices (\`v\` lines): not an OBJ mesh" --patch $P "$tmp/png.obj" $F
+
+# --- OBJ: coordinates --------------------------------------------------------------------------
+variant nonnumeric.obj '7s/.*/v 1 one 0/'
+expect obj_nonnumeric_coordinate 3 "nonnumeric.obj:7: vertex coordinate 'one' is not a number" --patch $P "$tmp/nonnumeric.obj" $F
+variant comma.obj '7s/.*/v 1,0 1,0 0/'
+expect obj_decimal_comma 3 "comma.obj:7: vertex coordinate '1,0' is not a number" --patch $P "$tmp/comma.obj" $F
+variant missing.obj '7s/.*/v 1 1/'
+expect obj_missing_coordinate 3 "missing.obj:7: vertex has 2 coordinates; 3 needed" --patch $P "$tmp/missing.obj" $F
+variant nan.0001.obj '7s/.*/v nan 1 0/' $F
+expect obj_nan 3 "nan.0001.obj:7: vertex coordinate 'nan' is not finite" --patch $P $B "$tmp/nan.0001.obj"
+variant inf.0001.obj '7s/.*/v 1 -inf 0/' $F
+expect obj_inf 3 "inf.0001.obj:7: vertex coordinate '-inf' is not finite" --patch $P $B "$tmp/inf.0001.obj"
+variant huge.0001.obj '7s/.*/v 1e999 1 0/' $F
+expect obj_overflowing_number 3 "huge.0001.obj:7: vertex coordinate '1e999' is not a number" --patch $P $B "$tmp/huge.0001.obj"
+
+# --- OBJ: faces --------------------------------------------------------------------------------
+variant zero.obj '18s/.*/f 0 2 6 5/'
+expect obj_face_index_0 3 "zero.obj:18: face index 0 (OBJ indices start at 1)" --patch $P "$tmp/zero.obj" $F
+variant far.obj '26s/.*/f 11 12 17 15/'
+expect obj_face_index_out_of_range 3 "far.obj:26: face index 17 is out of range (the file has 16 vertices)" --patch $P "$tmp/far.obj" $F
+variant before.obj '18s/.*/f -1 -2 -17/'
+expect obj_relative_before_first 3 "before.obj:18: relative face index -17 reaches before vertex 1" --patch $P "$tmp/before.obj" $F
+variant two.obj '20s/.*/f 3 4/'
+expect obj_face_two_vertices 3 "two.obj:20: face has 2 vertices; at least 3 needed" --patch $P "$tmp/two.obj" $F
+variant one.obj '20s/.*/f 3/'
+expect obj_face_one_vertex 3 "one.obj:20: face has 1 vertex; at least 3 needed" --patch $P "$tmp/one.obj" $F
+variant repeat.obj '20s/.*/f 3 4 8 4/'
+expect obj_face_repeats_vertex 3 "repeat.obj:20: face uses vertex 4 twice (degenerate face)" --patch $P "$tmp/repeat.obj" $F
+variant word.obj '20s/.*/f 3 4 eight 7/'
+expect obj_face_entry_not_index 3 "word.obj:20: face entry 'eight' is not a vertex index" --patch $P "$tmp/word.obj" $F
+variant cont.obj '20s/.*/f 3 4 \\/'
+expect obj_line_continuation 3 "cont.obj:20: line continuation" --patch $P "$tmp/cont.obj" $F
+# Valid: relative indices, v lines after the faces, slashes and extra statements.
+awk 'BEGIN{n=0} /^v /{n++} /^f /{printf "f"; for(i=2;i<=NF;i++) printf " %d/%d", $i-n-1, 1; print ""; next} {print}' $B >"$tmp/relative.obj"
+expect obj_relative_indices_valid 0 "1 patches, 4 sliding vertices" --patch $P "$tmp/relative.obj" $F
+{ grep '^f ' $B; grep -v '^f ' $B; } >"$tmp/faces_first.obj"
+expect obj_v_after_f_valid 0 "1 patches, 4 sliding vertices" --patch $P "$tmp/faces_first.obj" $F
+
+# --- patch files -------------------------------------------------------------------------------
+printf '0-4\nselect -r pBody\n' >"$tmp/token.txt"
+expect patch_unknown_token 3 "token.txt:2: unknown token 'select': expected a face id (12), a range (12-40)" --patch "$tmp/token.txt" $B $F
+printf '# all\n0-9\n' >"$tmp/range.txt"
+expect patch_index_out_of_range 3 "range.txt:2: face 9 is out of range (the bind has 9 faces, numbered 0 to 8)" --patch "$tmp/range.txt" $B $F
+printf '# nothing selected yet\n\n' >"$tmp/none.txt"
+expect patch_empty_selection 3 "none.txt: selects no faces" --patch "$tmp/none.txt" $B $F
+: >"$tmp/zero.txt"
+expect patch_empty_file 3 "zero.txt: selects no faces" --patch "$tmp/zero.txt" $B $F
+printf 'pBody.f[0:3]\npHead.f[4:8]\n' >"$tmp/maya.txt"
+expect patch_maya_two_objects 3 "maya.txt:2: names object 'pHead' but line 1 names 'pBody'" --patch "$tmp/maya.txt" $B $F
+printf '8-0\n' >"$tmp/back.txt"
+expect patch_backward_range 3 "back.txt:1: range '8-0' runs backwards" --patch "$tmp/back.txt" $B $F
+printf '0-8\n\x00\x01\x02' >"$tmp/bin.txt"
+expect patch_binary 3 "bin.txt:2: binary data (NUL byte)" --patch "$tmp/bin.txt" $B $F
+printf 'pBody.f[0:8]\n' >"$tmp/maya_ok.txt"
+expect patch_maya_one_object_valid 0 "1 patches, 4 sliding vertices" --patch "$tmp/maya_ok.txt" $B $F
+
+# --- patch topology ----------------------------------------------------------------------------
+printf '0-5\n' >"$tmp/cube.txt"
+expect topo_closed_patch 3 "has no boundary: it is a closed surface; leave at least one face out" --patch "$tmp/cube.txt" cube.obj cube.obj
+printf '0-2\n' >"$tmp/fin.txt"
+expect topo_edge_three_faces 3 "edge (0, 1) is shared by 3 selected faces" --patch "$tmp/fin.txt" fin.obj fin.obj
+expect topo_bowtie_vertex 3 "vertex 9 is non-manifold" --patch bowtie.txt $B $F
+printf '0-5\n' >"$tmp/moebius.txt"
+expect topo_moebius 3 "not consistently oriented (a flipped face, or a non-orientable patch such as a Moebius strip)" --patch "$tmp/moebius.txt" moebius.obj moebius.obj
+variant flipped.obj '22s/.*/f 10 11 7 6/'
+expect topo_flipped_face 3 "traverse edge" --patch $P "$tmp/flipped.obj" $F
+printf '0-4\n' >"$tmp/left.txt"
+printf '4-8\n' >"$tmp/right.txt"
+expect topo_face_in_two_patches 3 "face 4 (grid.obj:22) is selected by patch 0 and by patch 1" --patch "$tmp/left.txt" --patch "$tmp/right.txt" $B $F
+
+# --- frames that are not the bind deformed ------------------------------------------------------
+variant more.0001.obj '17a v 9 9 9' $F
+expect frame_vertex_count 3 "more.0001.obj: has 17 vertices; the bind (grid.obj) has 16" --patch $P $B "$tmp/more.0001.obj"
+variant fewer.0001.obj '17d' $F  # the last vertex gone: the faces that use it now point past the end
+expect frame_vertex_missing 3 "fewer.0001.obj:25: face index 16 is out of range (the file has 15 vertices)" --patch $P $B "$tmp/fewer.0001.obj"
+variant faces.0001.obj '22s/.*/f 6 7 11 9/' $F
+expect frame_face_differs 3 "faces.0001.obj:22: face 4 differs from the bind's (grid.obj:22)" --patch $P $B "$tmp/faces.0001.obj"
+variant extra.0001.obj '$a f 1 2 3' $F
+expect frame_face_count 3 "has 10 faces; the bind (grid.obj) has 9" --patch $P $B "$tmp/extra.0001.obj"
+
+# --- degenerate geometry: handled (exit 0, finite) or refused with a message --------------------
+variant zero_edge.obj '7s/.*/v 2 1 0/'  # vertex 5 on vertex 6: zero-length edge, zero-area fans
+expect degenerate_bind_zero_length_edge 0 "sliding vertices" --patch $P "$tmp/zero_edge.obj" $F
+variant sliver.obj '7s/.*/v 0.5 0 0/'  # vertex 5 on the border edge 0-1: zero-area triangle
+expect degenerate_bind_zero_area 0 "sliding vertices" --patch $P "$tmp/sliver.obj" $F
+variant collapsed_edge.0001.obj '7s/.*/v 2.2 1 0.4/' $F
+expect degenerate_frame_zero_length_edge 0 "fallbacks" --patch $P $B "$tmp/collapsed_edge.0001.obj"
+variant folded.0001.obj '7s/.*/v 2.8 1.5 -0.5/' $F  # vertex 5 pulled across its neighbours
+expect degenerate_frame_folded 0 "fallbacks" --patch $P $B "$tmp/folded.0001.obj"
+awk '/^v /{print "v 1 1 1"; next} {print}' $B >"$tmp/point.0001.obj"
+expect degenerate_frame_all_collapsed 3 "point.0001.obj: patch 0: every bar of the patch has zero (or non-finite) length" --patch $P $B "$tmp/point.0001.obj"
+awk '/^v /{print "v", $2, 0, 0; next} {print}' $B >"$tmp/flat.obj"
+expect degenerate_bind_all_collapsed_to_a_line 0 "1 frames slid" --patch $P "$tmp/flat.obj" $F
+
+# --- glTF (read through --animation, which reads the mesh before looking for a skin) ----------
+# quad.gltf: one indexed quad, positions and indices in a data: URI buffer; valid but not skinned.
+G=quad.gltf
+expect gltf_valid_but_not_skinned 3 "quad.gltf: mesh 0: is not skinned: no node gives it a skin" --patch $P --animation 0 $G
+gltf_variant() {
+  sed -e "$2" $G >"$tmp/$1"
+}
+gltf_variant nobuffer.gltf 's|"uri":"data:[^"]*"|"uri":"quad.bin"|'
+expect gltf_missing_buffer 3 "nobuffer.gltf: not a readable glTF 2.0 file: File not found : quad.bin" --patch $P --animation 0 "$tmp/nobuffer.gltf"
+gltf_variant badbuffer.gltf 's|"byteLength":60|"byteLength":600|'
+expect gltf_buffer_shorter_than_declared 3 "badbuffer.gltf: not a readable glTF 2.0 file: Failed to decode 'uri'" --patch $P --animation 0 "$tmp/badbuffer.gltf"
+gltf_variant noaccessor.gltf 's|"POSITION":0|"POSITION":7|'
+expect gltf_missing_accessor 3 "noaccessor.gltf: mesh 0 primitive 0: POSITION accessor 7: does not exist" --patch $P --animation 0 "$tmp/noaccessor.gltf"
+gltf_variant overrun.gltf 's|"count":4,"type":"VEC3"|"count":40,"type":"VEC3"|'
+expect gltf_accessor_past_its_view 3 "overrun.gltf: mesh 0 primitive 0: POSITION accessor 0: 40 elements from byte 0 run past the end of buffer view 0 (48 bytes)" --patch $P --animation 0 "$tmp/overrun.gltf"
+gltf_variant noview.gltf 's|"buffer":0,"byteOffset":48|"buffer":3,"byteOffset":48|'
+expect gltf_view_of_missing_buffer 3 "noview.gltf: mesh 0 primitive 0: indices accessor 1: its buffer view 1: buffer 3 does not exist" --patch $P --animation 0 "$tmp/noview.gltf"
+gltf_variant vec2.gltf 's|"count":4,"type":"VEC3"|"count":4,"type":"VEC2"|'
+expect gltf_position_wrong_type 3 "vec2.gltf: mesh 0 primitive 0: POSITION accessor 0: is VEC2, expected VEC3" --patch $P --animation 0 "$tmp/vec2.gltf"
+gltf_variant u32pos.gltf 's|"bufferView":0,"componentType":5126|"bufferView":0,"componentType":5125|'
+expect gltf_position_wrong_component_type 3 "u32pos.gltf: mesh 0 primitive 0: POSITION accessor 0: has component type 5125; positions are float (5126)" --patch $P --animation 0 "$tmp/u32pos.gltf"
+gltf_variant floatidx.gltf 's|"componentType":5123,"count":6|"componentType":5126,"count":6|'
+expect gltf_float_indices 3 "floatidx.gltf: mesh 0 primitive 0: indices accessor 1: must be SCALAR unsigned byte/short/int" --patch $P --animation 0 "$tmp/floatidx.gltf"
+head -c 300 $G >"$tmp/cut.gltf"
+expect gltf_truncated_json 3 "cut.gltf: not a readable glTF 2.0 file: [json.exception.parse_error.101] parse error at line 1, column 301" --patch $P --animation 0 "$tmp/cut.gltf"
+printf 'glTF\x02\x00\x00\x00\xff\xff\x00\x00JSON' >"$tmp/cut.glb"
+expect gltf_truncated_glb 3 "cut.glb: not a readable glTF 2.0 file" --patch $P --animation 0 "$tmp/cut.glb"
+
+# --- files and folders -------------------------------------------------------------------------
+expect file_missing_bind 3 "nothere.obj: cannot read: No such file or directory" --patch $P "$tmp/nothere.obj" $F
+expect file_missing_frame 3 "nothere.0002.obj: cannot read: No such file or directory" --patch $P $B "$tmp/nothere.0002.obj"
+expect file_missing_patch 3 "nothere.txt: cannot read: No such file or directory" --patch "$tmp/nothere.txt" $B $F
+mkdir -p "$tmp/folder.obj"
+expect file_bind_is_folder 3 "folder.obj: cannot read: it is a directory" --patch $P "$tmp/folder.obj" $F
+echo x >"$tmp/afile"
+expect file_path_through_a_file 3 "afile/grid.obj: cannot read: Not a directory" --patch $P "$tmp/afile/grid.obj" $F
+# Permission cases: root reads and writes whatever the mode bits say, so run them as nobody.
+as_user=()
+if [ "$(id -u)" -eq 0 ]; then
+  if command -v setpriv >/dev/null && setpriv --reuid=65534 --regid=65534 --clear-groups true 2>/dev/null; then
+    as_user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+    chmod 755 "$tmp"
+  else
+    as_user=(none)
+  fi
+fi
+cp $B "$tmp/locked.obj"
+chmod 000 "$tmp/locked.obj"
+mkdir -p "$tmp/ro"
+chmod 555 "$tmp/ro"
+if [ "${as_user[0]:-}" = none ]; then
+  echo "SKIP file_unreadable_bind, out_folder_read_only: root without setpriv" >&2
+  skipped=$((skipped + 2))
+else
+  runner=("${as_user[@]}")
+  cp -r . "$tmp/inputs" && chmod -R a+rwX "$tmp/inputs" && chmod 1777 "$tmp/out"
+  cd "$tmp/inputs"
+  expect file_unreadable_bind 3 "locked.obj: cannot read: Permission denied" --patch $P "$tmp/locked.obj" $F
+  expect out_folder_read_only 4 "grid.0001.obj: cannot write: Permission denied" -o "$tmp/ro" --patch $P $B $F
+  cd "$here"
+  runner=()
+fi
+expect out_folder_is_file 4 "afile: cannot write: exists and is not a folder" -o "$tmp/afile" --patch $P $B $F
+expect out_parent_is_file 4 "cannot create the output folder" -o "$tmp/afile/sub" --patch $P $B $F
+expect out_unwritable_path 4 "cannot create the output folder" -o /proc/skinslide-out --patch $P $B $F
+mkdir -p "$tmp/hasdir/grid.0001.obj"
+expect out_target_is_folder 4 "grid.0001.obj: cannot write: it is a directory" -o "$tmp/hasdir" --patch $P $B $F
+# An output that is an input: refused before anything is opened for writing, inputs untouched.
+mkdir -p "$tmp/inplace"
+cp $B $F $P "$tmp/inplace/"
+touch -d 2000-01-01 "$tmp/inplace/"*
+(cd "$tmp/inplace" && "$bin" -o . --patch $P $B $F >"$tmp/stdout" 2>"$tmp/stderr")
+rc=$?
+if [ "$rc" -ne 2 ] || ! grep -qF "output ./grid.0001.obj would overwrite input grid.0001.obj" "$tmp/stderr"; then
+  fail "out_overwrites_input: exit $rc"
+elif ! cmp -s $F "$tmp/inplace/$F" || [ -n "$(find "$tmp/inplace" -type f -newermt 2000-01-02)" ] ||
+  [ "$(ls -A "$tmp/inplace" | wc -l)" -ne 3 ]; then
+  fail "out_overwrites_input: the folder of inputs changed"
+else
+  passed=$((passed + 1))
+fi
+expect frame_unknown_format 2 "unknown mesh format '.ply'" --patch $P $B frame.0001.ply
+cp $F "$tmp/grid.0001.obj"
+expect frames_same_name 2 "two frames are named 'grid.0001.obj'" --patch $P $B $F "$tmp/grid.0001.obj"
+
+# --- --frames and --keep-going ------------------------------------------------------------------
+cp $B "$tmp/rest.obj"
+expect frames_without_number 2 "--frames: $tmp/rest.obj has no frame number in its file name" --frames 1-10 --patch $P $B $F "$tmp/rest.obj"
+expect frames_bad_spec 2 "--frames: '10-1' runs backwards" --frames 10-1 --patch $P $B $F
+expect frames_none_selected 2 "--frames 5-9 selects none of the 2 frames (numbered 1 to 2)" --frames 5-9 --patch $P $B $F grid.0002.obj
+expect frames_clamped_valid 0 "1 frames slid" --frames 2-100 --patch $P $B $F grid.0002.obj
+cp $F "$tmp/good.0001.obj"
+cp grid.0002.obj "$tmp/good.0003.obj"
+expect fail_fast_bad_frame 3 "nan.0001.obj:7: vertex coordinate 'nan' is not finite" -j 1 --patch $P $B "$tmp/nan.0001.obj" "$tmp/good.0001.obj"
+expect keep_going_bad_frames 3 "2 frames slid, 2 failed" --keep-going --patch $P $B "$tmp/good.0001.obj" "$tmp/nan.0001.obj" "$tmp/fewer.0001.obj" "$tmp/good.0003.obj"
+ls "$tmp/out/keep_going_bad_frames" 2>/dev/null | tr '\n' ' ' >"$tmp/written"
+[ "$(cat "$tmp/written")" = "good.0001.obj good.0003.obj " ] || fail "keep_going_bad_frames wrote: $(cat "$tmp/written")"
+grep -qF "nan.0001.obj:7:" "$tmp/stderr" && grep -qF "fewer.0001.obj:25: face index 16" "$tmp/stderr" ||
+  fail "keep_going_bad_frames does not name both bad frames"
+expect keep_going_exit_code_of_first 4 "2 failed" -o "$tmp/hasdir" --keep-going --patch $P $B $F "$tmp/nan.0001.obj"
+
+echo "bad_inputs: $passed passed, $failed failed, $skipped skipped"
+[ "$failed" -eq 0 ]
