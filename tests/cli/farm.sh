@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# Identical bytes on every farm: outputs do not depend on --threads (1, 2, 8), on running the
+# frames all together, one at a time or in reverse order, on which run it is, nor on splitting a
+# shot into --frames chunks run side by side (xargs -P) as a render farm does. And a run killed
+# with SIGKILL leaves each output either as it was before or complete, never partial.
+# Usage: SKINSLIDE=path/to/skinslide tests/cli/farm.sh
+set -u
+root=$(cd "$(dirname "$0")/../.." && pwd)
+bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$root"
+failed=0
+passed=0
+
+check() {
+  local what=$1
+  shift
+  if "$@" >/dev/null 2>"$tmp/check.err"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAIL: $what" >&2
+    sed 's/^/    /' "$tmp/check.err" >&2
+  fi
+}
+
+# Same file names and bytes in two folders, and at least `n` files.
+same_tree() {
+  local a=$1 b=$2 n=$3
+  [ "$(find "$a" -type f | wc -l)" -ge "$n" ] || { echo "$a has fewer than $n files" >&2; return 1; }
+  diff -r "$a" "$b" >&2
+}
+
+# A shot of 24 frames numbered 1-24 (the sample frames over and over, under farm-style names).
+shot=$tmp/shot
+mkdir -p "$shot"
+mapfile -t sample < <(ls data/elbow/frames/*.obj)
+for ((f = 1; f <= 24; f++)); do
+  ln -s "$root/${sample[$(((f - 1) % ${#sample[@]}))]}" "$shot/$(printf 'arm.%04d.obj' "$f")"
+done
+frames=("$shot"/arm.*.obj)
+slide() { "$bin" -q --patch data/elbow/patch.txt data/elbow/bind.obj "$@"; }
+
+# --- determinism ---------------------------------------------------------------------------------
+check "whole shot, --threads 1" slide -j 1 -o "$tmp/t1" "${frames[@]}"
+for t in 2 8; do
+  check "whole shot, --threads $t" slide -j "$t" -o "$tmp/t$t" "${frames[@]}"
+  check "--threads 1 and $t give identical bytes" same_tree "$tmp/t1" "$tmp/t$t" 24
+done
+check "a second run" slide -j 2 -o "$tmp/again" "${frames[@]}"
+check "two runs give identical bytes" same_tree "$tmp/t1" "$tmp/again" 24
+reversed=()
+for ((i = ${#frames[@]} - 1; i >= 0; i--)); do reversed+=("${frames[i]}"); done
+check "reversed order" slide -j 2 -o "$tmp/rev" "${reversed[@]}"
+check "reversed order gives identical bytes" same_tree "$tmp/t1" "$tmp/rev" 24
+for f in "${frames[@]}"; do slide -j 1 -o "$tmp/single" "$f" || echo "FAIL: $f alone" >&2; done
+check "one frame at a time gives identical bytes" same_tree "$tmp/t1" "$tmp/single" 24
+# The sample frames repeat: equal inputs, equal outputs (a frame does not see its neighbours).
+check "frames 1 and 6 (same input) give the same bytes" cmp "$tmp/t1/arm.0001.obj" "$tmp/t1/arm.0006.obj"
+check "frames 1 and 2 (different inputs) differ" bash -c "! cmp -s '$tmp/t1/arm.0001.obj' '$tmp/t1/arm.0002.obj'"
+
+# --- farm split ---------------------------------------------------------------------------------
+# As OpenCue or Deadline cut a shot of frames 1-24 into chunks of 10: 1-10, 11-20, 21-30 (the
+# last chunk runs past the shot's end and is clamped). Each task gets every frame file and its
+# --frames range; the tasks run side by side into one output folder.
+printf '%s\n' 1-10 11-20 21-30 >"$tmp/chunks"
+check "the chunks run side by side (xargs -P 3)" \
+  xargs -P 3 -I RANGE "$bin" -q -j 1 --frames RANGE -o "$tmp/farm" --patch data/elbow/patch.txt \
+  data/elbow/bind.obj "${frames[@]}" <"$tmp/chunks"
+check "the farm split gives the whole run's bytes" same_tree "$tmp/t1" "$tmp/farm" 24
+# Steps and lists pick exactly the frames they name.
+check "--frames 1-24:5,3,20-21" slide -o "$tmp/step" --frames 1-24:5,3,20-21 "${frames[@]}"
+check "--frames 1-24:5,3,20-21 writes frames 1 3 6 11 16 20 21" test \
+  "$(cd "$tmp/step" && echo *)" = "arm.0001.obj arm.0003.obj arm.0006.obj arm.0011.obj arm.0016.obj arm.0020.obj arm.0021.obj"
+for f in "$tmp/step"/*; do
+  check "$(basename "$f") from --frames is the whole run's" cmp "$f" "$tmp/t1/$(basename "$f")"
+done
+
+# --- SIGKILL mid-run ----------------------------------------------------------------------------
+# The output folder starts with an older complete version of every output (the unslid frame).
+# Runs are killed at 10% .. 90% of a run's length; after each kill every output must be the old
+# file or the new one byte for byte. Temporary files (.NAME.tmp.XXXXXX) of the writes in flight
+# may remain: a killed process cannot clean up; they are counted, never picked up by a glob.
+big=$tmp/big
+mkdir -p "$big"
+for ((f = 1; f <= 120; f++)); do
+  ln -s "$root/${sample[$(((f - 1) % ${#sample[@]}))]}" "$big/$(printf 'arm.%04d.obj' "$f")"
+done
+start=$(date +%s%N)
+check "a 120-frame run" slide -j 2 -o "$tmp/bigref" "$big"/*.obj
+run_ms=$((($(date +%s%N) - start) / 1000000))
+mixed=0
+leftovers=0
+for pct in 10 30 50 70 90; do
+  out=$tmp/kill$pct
+  mkdir -p "$out"
+  for f in "$big"/*.obj; do cp "$f" "$out/$(basename "$f")"; done
+  # The binary itself in the background (not the shell function, whose subshell would take the kill).
+  "$bin" -q -j 2 -o "$out" --patch data/elbow/patch.txt data/elbow/bind.obj "$big"/*.obj &
+  pid=$!
+  sleep "$(awk -v ms="$run_ms" -v p="$pct" 'BEGIN { printf "%.3f", ms * p / 100000 }')"
+  kill -KILL "$pid" 2>/dev/null
+  wait "$pid" 2>/dev/null
+  old=0 new=0 bad=0
+  for f in "$big"/*.obj; do
+    name=$(basename "$f")
+    if cmp -s "$out/$name" "$tmp/bigref/$name"; then
+      new=$((new + 1))
+    elif cmp -s "$out/$name" "$f"; then
+      old=$((old + 1))
+    else
+      bad=$((bad + 1))
+      echo "    $out/$name is neither the old file nor the new one" >&2
+    fi
+  done
+  leftovers=$((leftovers + $(find "$out" -name '.*.tmp.*' | wc -l)))
+  echo "farm: killed at $pct%: $old old, $new new, $bad partial" >&2
+  check "killed at $pct%: every output old or new" test "$bad" -eq 0
+  [ "$old" -gt 0 ] && [ "$new" -gt 0 ] && mixed=$((mixed + 1))
+done
+# Without a kill that lands mid-run the check above proves nothing.
+check "at least one kill landed mid-run (old and new outputs side by side)" test "$mixed" -ge 1
+echo "farm: kills left $leftovers temporary files in total (run of ${run_ms} ms)"
+
+echo "farm: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
