@@ -49,9 +49,13 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
     p += n;
     left -= static_cast<size_t>(n);
   }
-  // mkstemp creates 0600; outputs get the usual 0666 & ~umask like any other file.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
+  // mkstemp creates 0600; outputs get the usual 0666 & ~umask like any other file. umask() can
+  // only be read by setting it, and frames are written from several threads: read it once.
+  static const mode_t mask = [] {
+    const mode_t m = ::umask(0);
+    ::umask(m);
+    return m;
+  }();
   if (::fchmod(fd, 0666 & ~mask) != 0 || ::fsync(fd) != 0) {
     const std::string reason = std::strerror(errno);
     ::close(fd);
