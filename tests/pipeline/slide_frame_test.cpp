@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -193,6 +194,107 @@ TEST(SlideFrame, AHalfStretchedSheetSlidesTowardsTheStretchedSide) {
   const Positions3 out = apply_slide(frame, r.slid);
   EXPECT_LT(edge_log_spread(setup.patches[0], bind.positions, out),
             edge_log_spread(setup.patches[0], bind.positions, frame));
+}
+
+// Distance to a triangle that may be degenerate (a segment or a point): Ericson's formula, or the
+// nearest of its edges where that formula divides by a zero area.
+double distance_to_any_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double d = point_triangle_distance(p, a, b, c);
+  if (std::isfinite(d)) return d;
+  auto segment = [&](const Vec3& u, const Vec3& v) {
+    const double l2 = (v - u).squaredNorm();
+    const double t = l2 > 0 ? std::clamp((p - u).dot(v - u) / l2, 0.0, 1.0) : 0.0;
+    return (p - (u + t * (v - u))).norm();
+  };
+  return std::min({segment(a, b), segment(b, c), segment(c, a)});
+}
+
+// Runs `frame` through `setup` and checks what degenerate input must never break: every output
+// finite, outside and border vertices untouched, every slid vertex on the frame's patch surface.
+void expect_finite_and_on_surface(const BindSetup& setup, const Positions3& frame,
+                                  const std::string& what) {
+  SCOPED_TRACE(what);
+  const FrameResult r = slide_frame(setup, frame);
+  const Positions3 out = apply_slide(frame, r.slid);
+  const double diag = diagonal(frame);
+  for (const Vec3& x : out) ASSERT_TRUE(x.allFinite());
+  for (const PatchNet& patch : setup.patches) {
+    if (patch.skipped) continue;
+    std::vector<char> free(patch.vertices.size(), 0);
+    for (Index lv : patch.free_vertices) free[lv] = 1;
+    for (size_t lv = 0; lv < patch.vertices.size(); ++lv)
+      if (!free[lv]) {
+        EXPECT_EQ(out[patch.vertices[lv]], frame[patch.vertices[lv]]);
+      }
+    for (Index lv : patch.free_vertices) {
+      const Vec3& x = out[patch.vertices[lv]];
+      double best = INFINITY;
+      for (const Triangle& t : patch.triangles)
+        best = std::min(best, distance_to_any_triangle(x, frame[patch.vertices[t[0]]],
+                                                       frame[patch.vertices[t[1]]],
+                                                       frame[patch.vertices[t[2]]]));
+      ASSERT_LE(best, 1e-9 * diag) << "vertex " << patch.vertices[lv];
+    }
+  }
+}
+
+TEST(SlideFrame, DegenerateFramesGiveFiniteVerticesOnTheFrameSurface) {
+  // 6x6 quads, vertex (i, j) = 7 j + i; all faces slide, the 25 interior vertices are free.
+  const PolyMesh bind = test::quad_grid(6, 6);
+  const BindSetup setup = bind_setup(bind, {test::all_faces(bind)}, SlideOptions{});
+  auto id = [](int i, int j) { return static_cast<Index>(7 * j + i); };
+
+  Positions3 frame = bind.positions;
+  frame[id(3, 3)] = frame[id(4, 3)];  // a zero-length edge, four zero-area fan triangles
+  expect_finite_and_on_surface(setup, frame, "one edge collapsed");
+
+  frame = bind.positions;
+  for (int i = 0; i <= 6; ++i) frame[id(i, 3)].y() = frame[id(i, 2)].y();  // a row of flat quads
+  expect_finite_and_on_surface(setup, frame, "a row of faces of zero area");
+
+  frame = bind.positions;
+  frame[id(3, 3)] = Vec3(5.5, 1.5, 0.3);  // pulled across its neighbours: folded triangles
+  expect_finite_and_on_surface(setup, frame, "a vertex pulled across its neighbours");
+
+  frame = bind.positions;
+  for (int j = 0; j <= 6; ++j)
+    for (int i = 0; i <= 3; ++i) frame[id(i, j)] = Vec3(1, 1, 1);  // half the sheet on a point
+  expect_finite_and_on_surface(setup, frame, "half the sheet collapsed to a point");
+
+  frame = bind.positions;
+  for (int j = 1; j <= 5; ++j)
+    for (int i = 1; i <= 5; ++i) frame[id(i, j)] = frame[id(6 - i, 6 - j)];  // interior turned
+  expect_finite_and_on_surface(setup, frame,
+                               "the interior rotated half a turn (folded inside out)");
+
+  std::mt19937 rng(0);
+  std::uniform_real_distribution<double> jitter(-0.9, 0.9);
+  frame = bind.positions;
+  for (Vec3& p : frame) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  for (int k = 0; k < 10; ++k) frame[id(1 + k % 5, 1 + k / 5)] = frame[id(2, 2)];
+  expect_finite_and_on_surface(setup, frame, "seeded jitter with ten vertices on one point");
+}
+
+TEST(SlideFrame, DegenerateBindsGiveFiniteVerticesOnTheFrameSurface) {
+  const PolyMesh grid = test::quad_grid(6, 6);
+  auto id = [](int i, int j) { return static_cast<Index>(7 * j + i); };
+  Positions3 frame = grid.positions;
+  for (Vec3& p : frame) p = Vec3(1.5 * p.x(), p.y(), 0.1 * p.x() * p.x());  // stretched and bent
+
+  PolyMesh bind = grid;
+  bind.positions[id(3, 3)] = bind.positions[id(4, 3)];  // a zero-length edge in the bind
+  expect_finite_and_on_surface(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}), frame,
+                               "bind with a zero-length edge");
+
+  bind = grid;
+  for (int i = 0; i <= 6; ++i) bind.positions[id(i, 3)].y() = bind.positions[id(i, 2)].y();
+  expect_finite_and_on_surface(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}), frame,
+                               "bind with a row of zero-area faces");
+
+  bind = grid;
+  for (Vec3& p : bind.positions) p.y() = 0;  // the whole bind on a line
+  expect_finite_and_on_surface(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}), frame,
+                               "bind collapsed to a line");
 }
 
 TEST(SlideFrame, AWrongVertexCountIsAnInputError) {
