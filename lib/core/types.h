@@ -1,6 +1,7 @@
 // Vocabulary types shared by every module: points, index aliases, Eigen sparse aliases.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,9 @@ using Vec3 = Eigen::Vector3d;
 
 /// Vertex, face and triangle indices: 0-based, in file order unless a header says otherwise.
 using Index = std::int32_t;
+
+/// A triangle as three vertex (node) ids.
+using Triangle = std::array<Index, 3>;
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 using Triplet = Eigen::Triplet<double>;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/error.h"
@@ -29,7 +30,9 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   // The temporary lives in the target folder so that rename() is atomic (same file system);
   // its name starts with '.' so a glob over the folder does not pick up a half-written file.
-  std::string tmpl = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
+  std::string name = ".";
+  name.append(target.filename().string()).append(".tmp.XXXXXX");
+  std::string tmpl = (dir / name).string();
   const int fd = mkstemp(tmpl.data());
   if (fd < 0) throw_output(path, std::strerror(errno));
   const char* p = bytes.data();

@@ -38,6 +38,10 @@ MeshFormat mesh_format(const std::string& path);
 /// Reads a mesh file. \throw Error(Input) naming the path (and line) on any malformed input.
 MeshFile read_mesh_file(const std::string& path, const MeshReadOptions& options = {});
 
+/// Checks that `frame` has the bind's vertex count and exactly its faces.
+/// \throw Error(Input) naming the frame's file, and the line or face where they first differ.
+void require_same_topology(const MeshFile& bind, const MeshFile& frame);
+
 /// Writes `frame`'s file to `out_path` with the vertices of `slid` moved; everything else is
 /// kept as it was. Atomic: a temporary file in the target folder, renamed when complete.
 /// \throw Error(Output) when the file cannot be written.

@@ -9,8 +9,6 @@
 
 namespace skinslide {
 
-using Triangle = std::array<Index, 3>;
-
 /// A square image over the unit square [0,1]^2. Pixel (i, j) covers
 /// [i/size, (i+1)/size) x [j/size, (j+1)/size) and is stored at ids[j*size + i] (row 0 = v = 0,
 /// the bottom of the net). Value 0 = no triangle, t+1 = triangle t of the net.

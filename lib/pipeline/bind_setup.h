@@ -8,6 +8,7 @@
 
 #include "core/types.h"
 #include "locate/id_raster.h"
+#include "mesh/patches.h"
 #include "mesh/poly_mesh.h"
 #include "pipeline/options.h"
 
@@ -31,6 +32,8 @@ struct PatchNet {
   Positions2 bind_net;                ///< 2D position of every local vertex
   std::vector<Index> free_vertices;   ///< local ids that slide (not on any loop), ascending
   double bind_diagonal = 0;           ///< bounding-box diagonal of the patch in the bind
+  int bind_net_flips = 0;             ///< bind-net triangles of the minority orientation
+  Index selection = 0;                ///< which selection (--patch file) it came from
   std::shared_ptr<const FrameNetSolver> solver;  ///< reused by every frame
 };
 
@@ -45,6 +48,6 @@ struct BindSetup {
 /// \throw Error(Input) on topology errors (non-manifold, closed patch, ...); names the face/vertex.
 /// \throw Error(Numeric) when the bind net cannot be solved.
 BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
-                     const SlideOptions& options);
+                     const SlideOptions& options, const FaceNamer& name_face = {});
 
 }  // namespace skinslide

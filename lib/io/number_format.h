@@ -1,0 +1,20 @@
+// Locale-free number text: shortest round-trip doubles out, strict doubles and integers in.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace skinslide {
+
+/// Shortest text that reads back to exactly `x` (std::to_chars), e.g. "0.1", "1e-05", "-3".
+std::string format_double(double x);
+
+/// Parses the whole of `text` as a double ("1", "-2.5e3", "+1"); nullopt when it is not one.
+/// "nan" and "inf" parse (the caller decides whether non-finite values are allowed).
+std::optional<double> parse_double(std::string_view text);
+
+/// Parses the whole of `text` as a (possibly signed) integer; nullopt otherwise or on overflow.
+std::optional<long long> parse_integer(std::string_view text);
+
+}  // namespace skinslide

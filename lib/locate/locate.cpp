@@ -1,0 +1,168 @@
+#include "locate/locate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "core/check.h"
+#include "locate/barycentric.h"
+
+namespace skinslide {
+namespace {
+
+// Among `candidates` (ascending, unique), the triangle holding p by the documented rule.
+std::optional<Location> best_holder(const Vec2& p, const Positions2& net,
+                                    const std::vector<Triangle>& triangles,
+                                    const std::vector<Index>& candidates) {
+  std::optional<Location> best;
+  double best_min = -INFINITY;
+  for (Index t : candidates) {
+    const Triangle& tri = triangles[t];
+    const Barycentric w = barycentric(p, net[tri[0]], net[tri[1]], net[tri[2]]);
+    if (!w.ok || w.min() < -kInsideEps) continue;
+    if (w.min() > best_min) {  // strict: the lower index keeps a tie
+      best_min = w.min();
+      best = Location{t, w.w, false};
+    }
+  }
+  return best;
+}
+
+// A uniform grid over the triangles' bounding boxes: complete candidate sets for the fallback.
+class TriangleGrid {
+ public:
+  TriangleGrid(const Positions2& net, const std::vector<Triangle>& triangles, int cells)
+      : net_(net), triangles_(triangles), n_(cells) {
+    lo_ = Vec2(INFINITY, INFINITY);
+    Vec2 hi(-INFINITY, -INFINITY);
+    for (const Vec2& p : net) {
+      lo_ = lo_.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    cell_ = std::max((hi - lo_).maxCoeff() / n_, 1e-300);
+    start_.assign(static_cast<size_t>(n_) * n_ + 1, 0);
+    // Two passes (count, fill) keep each cell's list in ascending triangle order.
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<Index> fill(start_.begin(), start_.end() - 1);
+      for (size_t t = 0; t < triangles.size(); ++t) {
+        const auto [i0, j0, i1, j1] = box(t);
+        for (int j = j0; j <= j1; ++j)
+          for (int i = i0; i <= i1; ++i) {
+            const size_t c = static_cast<size_t>(j) * n_ + i;
+            if (pass == 0)
+              ++start_[c + 1];
+            else
+              items_[fill[c]++] = static_cast<Index>(t);
+          }
+      }
+      if (pass == 0) {
+        for (size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
+        items_.resize(start_.back());
+      }
+    }
+  }
+
+  Location locate(const Vec2& p) const {
+    const int pi = clamp_cell((p.x() - lo_.x()) / cell_);
+    const int pj = clamp_cell((p.y() - lo_.y()) / cell_);
+    std::vector<Index> candidates(items_.begin() + start_[pj * n_ + pi],
+                                  items_.begin() + start_[pj * n_ + pi + 1]);
+    if (auto holder = best_holder(p, net_, triangles_, candidates)) {
+      holder->fallback = true;
+      return *holder;
+    }
+    // Nearest triangle: rings of cells around p until no unseen cell can be closer.
+    Location best;
+    best.fallback = true;
+    double best_d2 = INFINITY;
+    auto visit = [&](int i, int j) {
+      if (i < 0 || j < 0 || i >= n_ || j >= n_) return;
+      for (Index k = start_[j * n_ + i]; k < start_[j * n_ + i + 1]; ++k) {
+        const Index t = items_[k];
+        const Triangle& tri = triangles_[t];
+        const ClosestPoint cp = closest_point(p, net_[tri[0]], net_[tri[1]], net_[tri[2]]);
+        if (cp.distance2 < best_d2 || (cp.distance2 == best_d2 && t < best.triangle)) {
+          best_d2 = cp.distance2;
+          best.triangle = t;
+          best.weight = cp.w;
+        }
+      }
+    };
+    for (int r = 0; r < n_; ++r) {
+      const double ring_gap = std::max(0, r - 1) * cell_;
+      if (ring_gap * ring_gap > best_d2) break;
+      if (r == 0) {
+        visit(pi, pj);
+        continue;
+      }
+      for (int i = pi - r; i <= pi + r; ++i) {
+        visit(i, pj - r);
+        visit(i, pj + r);
+      }
+      for (int j = pj - r + 1; j <= pj + r - 1; ++j) {
+        visit(pi - r, j);
+        visit(pi + r, j);
+      }
+    }
+    SKINSLIDE_CHECK(best.triangle >= 0, "the fallback found no triangle");
+    return best;
+  }
+
+ private:
+  int clamp_cell(double x) const {
+    if (!(x >= 0)) return 0;
+    return std::min(static_cast<int>(x), n_ - 1);
+  }
+  std::array<int, 4> box(size_t t) const {
+    const Vec2& a = net_[triangles_[t][0]];
+    const Vec2& b = net_[triangles_[t][1]];
+    const Vec2& c = net_[triangles_[t][2]];
+    return {clamp_cell((std::min({a.x(), b.x(), c.x()}) - lo_.x()) / cell_),
+            clamp_cell((std::min({a.y(), b.y(), c.y()}) - lo_.y()) / cell_),
+            clamp_cell((std::max({a.x(), b.x(), c.x()}) - lo_.x()) / cell_),
+            clamp_cell((std::max({a.y(), b.y(), c.y()}) - lo_.y()) / cell_)};
+  }
+
+  const Positions2& net_;
+  const std::vector<Triangle>& triangles_;
+  int n_;
+  Vec2 lo_;
+  double cell_ = 1;
+  std::vector<Index> start_;
+  std::vector<Index> items_;
+};
+
+}  // namespace
+
+std::vector<Location> locate_points(const Positions2& points, const Positions2& net,
+                                    const std::vector<Triangle>& triangles, const IdImage& image) {
+  SKINSLIDE_CHECK(!triangles.empty(), "a net with triangles");
+  std::vector<Location> out(points.size());
+  std::vector<size_t> missed;
+  std::vector<Index> candidates;
+  const int n = image.size;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Vec2& p = points[k];
+    const int pi = std::clamp(static_cast<int>(std::floor(p.x() * n)), 0, n - 1);
+    const int pj = std::clamp(static_cast<int>(std::floor(p.y() * n)), 0, n - 1);
+    candidates.clear();
+    for (int j = std::max(pj - 1, 0); j <= std::min(pj + 1, n - 1); ++j)
+      for (int i = std::max(pi - 1, 0); i <= std::min(pi + 1, n - 1); ++i)
+        if (const std::uint32_t id = image.at(i, j)) candidates.push_back(static_cast<Index>(id - 1));
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    if (auto holder = best_holder(p, net, triangles, candidates))
+      out[k] = *holder;
+    else
+      missed.push_back(k);
+  }
+  if (!missed.empty()) {
+    // About one cell per triangle keeps both the build and each query short.
+    const int cells = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(triangles.size()))), 1, 4096);
+    const TriangleGrid grid(net, triangles, cells);
+    for (size_t k : missed) out[k] = grid.locate(points[k]);
+  }
+  return out;
+}
+
+}  // namespace skinslide

@@ -1,0 +1,34 @@
+#include "pipeline/options.h"
+
+#include "core/error.h"
+
+namespace skinslide {
+
+Density parse_density(const std::string& name) {
+  if (name == "paper") return Density::Paper;
+  if (name == "inverse" || name == "length") return Density::Inverse;
+  if (name == "uniform") return Density::Uniform;
+  throw Error(ErrorKind::Usage, "unknown density '" + name + "' (paper, inverse, length, uniform)");
+}
+
+Holes parse_holes(const std::string& name) {
+  if (name == "free") return Holes::Free;
+  if (name == "fill") return Holes::Fill;
+  throw Error(ErrorKind::Usage, "unknown hole mode '" + name + "' (free, fill)");
+}
+
+std::string to_string(Density d) {
+  switch (d) {
+    case Density::Paper:
+      return "paper";
+    case Density::Inverse:
+      return "inverse";
+    case Density::Uniform:
+      return "uniform";
+  }
+  return "?";
+}
+
+std::string to_string(Holes h) { return h == Holes::Free ? "free" : "fill"; }
+
+}  // namespace skinslide

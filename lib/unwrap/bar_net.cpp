@@ -1,0 +1,181 @@
+#include "unwrap/bar_net.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+
+#include "core/check.h"
+#include "core/error.h"
+
+namespace skinslide {
+namespace {
+
+using Mat2 = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+
+struct FreeSystem {
+  std::vector<Index> free_id;
+  std::vector<Index> free_nodes;
+};
+
+FreeSystem free_system(const BarNet& net) {
+  FreeSystem s;
+  s.free_id.assign(net.node_count, -1);
+  for (Index v = 0; v < net.node_count; ++v)
+    if (!net.fixed[v]) {
+      s.free_id[v] = static_cast<Index>(s.free_nodes.size());
+      s.free_nodes.push_back(v);
+    }
+  return s;
+}
+
+// Right-hand side -K_fc x_c: each bar from a free node a to a fixed node b pulls a towards b.
+Mat2 fixed_pull(const BarNet& net, const std::vector<Index>& free_id, const std::vector<double>& q,
+                const Positions2& positions, Index rows) {
+  Mat2 b = Mat2::Zero(rows, 2);
+  for (size_t i = 0; i < net.bars.size(); ++i) {
+    const auto [u, v] = net.bars[i];
+    const Index fu = free_id[u], fv = free_id[v];
+    if (fu >= 0 && fv < 0) b.row(fu) += q[i] * positions[v].transpose();
+    if (fv >= 0 && fu < 0) b.row(fv) += q[i] * positions[u].transpose();
+  }
+  return b;
+}
+
+Positions2 scatter(const BarNet& net, const std::vector<Index>& free_id, const Mat2& x,
+                   const Positions2& fixed) {
+  Positions2 out(net.node_count);
+  for (Index v = 0; v < net.node_count; ++v) {
+    const Index r = free_id[v];
+    out[v] = r >= 0 ? Vec2(x(r, 0), x(r, 1)) : fixed[v];
+    if (!std::isfinite(out[v].x()) || !std::isfinite(out[v].y()))
+      throw Error(ErrorKind::Numeric, "bar net solve produced a non-finite position");
+  }
+  return out;
+}
+
+SparseMatrix free_matrix(const BarNet& net, const std::vector<Index>& free_id,
+                         const std::vector<double>& q, Index rows) {
+  std::vector<Triplet> t;
+  t.reserve(net.bars.size() * 4);
+  for (size_t i = 0; i < net.bars.size(); ++i) {
+    const auto [u, v] = net.bars[i];
+    const Index fu = free_id[u], fv = free_id[v];
+    if (fu >= 0) t.emplace_back(fu, fu, q[i]);
+    if (fv >= 0) t.emplace_back(fv, fv, q[i]);
+    if (fu >= 0 && fv >= 0) {
+      t.emplace_back(fu, fv, -q[i]);
+      t.emplace_back(fv, fu, -q[i]);
+    }
+  }
+  SparseMatrix K(rows, rows);
+  K.setFromTriplets(t.begin(), t.end());
+  return K;
+}
+
+Mat2 direct_solve(const SparseMatrix& K, const Mat2& b) {
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(K);
+  if (ldlt.info() != Eigen::Success)
+    throw Error(ErrorKind::Numeric, "bar net: the system could not be factorised (singular)");
+  Mat2 x = ldlt.solve(b);
+  if (ldlt.info() != Eigen::Success) throw Error(ErrorKind::Numeric, "bar net: solve failed");
+  return x;
+}
+
+}  // namespace
+
+Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q, const Positions2& positions) {
+  SKINSLIDE_CHECK(q.size() == net.bars.size(), "one q per bar");
+  SKINSLIDE_CHECK(positions.size() == static_cast<size_t>(net.node_count), "one position per node");
+  const FreeSystem s = free_system(net);
+  const Index rows = static_cast<Index>(s.free_nodes.size());
+  if (rows == 0) return positions;
+  const SparseMatrix K = free_matrix(net, s.free_id, q, rows);
+  const Mat2 b = fixed_pull(net, s.free_id, q, positions, rows);
+  return scatter(net, s.free_id, direct_solve(K, b), positions);
+}
+
+FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions)
+    : net_(std::move(net)), start_(std::move(positions)) {
+  SKINSLIDE_CHECK(start_.size() == static_cast<size_t>(net_.node_count), "one position per node");
+  FreeSystem s = free_system(net_);
+  free_id_ = std::move(s.free_id);
+  free_nodes_ = std::move(s.free_nodes);
+  const Index rows = static_cast<Index>(free_nodes_.size());
+  pattern_ = free_matrix(net_, free_id_, std::vector<double>(net_.bars.size(), 1.0), rows);
+  pattern_.makeCompressed();
+  // Where each bar's contributions land in the value array, so a solve only refills values.
+  auto slot = [&](Index r, Index c) -> Index {
+    if (r < 0 || c < 0) return -1;
+    const Index begin = pattern_.outerIndexPtr()[c], end = pattern_.outerIndexPtr()[c + 1];
+    const Index* inner = pattern_.innerIndexPtr();
+    const Index* it = std::lower_bound(inner + begin, inner + end, r);
+    SKINSLIDE_CHECK(it != inner + end && *it == r, "bar entry in the pattern");
+    return static_cast<Index>(it - inner);
+  };
+  slot_.resize(net_.bars.size());
+  for (size_t i = 0; i < net_.bars.size(); ++i) {
+    const Index fu = free_id_[net_.bars[i][0]], fv = free_id_[net_.bars[i][1]];
+    slot_[i] = {slot(fu, fu), slot(fv, fv), fu >= 0 && fv >= 0 ? slot(fu, fv) : -1,
+                fu >= 0 && fv >= 0 ? slot(fv, fu) : -1};
+  }
+}
+
+FrameNetSolution FrameNetSolver::solve(const std::vector<double>& q, const CgOptions& options) const {
+  SKINSLIDE_CHECK(q.size() == net_.bars.size(), "one q per bar");
+  FrameNetSolution out;
+  const Index rows = static_cast<Index>(free_nodes_.size());
+  if (rows == 0) {
+    out.positions = start_;
+    return out;
+  }
+  SparseMatrix K = pattern_;
+  double* val = K.valuePtr();
+  std::fill(val, val + K.nonZeros(), 0.0);
+  for (size_t i = 0; i < slot_.size(); ++i) {
+    const auto& s = slot_[i];
+    if (s[0] >= 0) val[s[0]] += q[i];
+    if (s[1] >= 0) val[s[1]] += q[i];
+    if (s[2] >= 0) val[s[2]] -= q[i];
+    if (s[3] >= 0) val[s[3]] -= q[i];
+  }
+  const Mat2 b = fixed_pull(net_, free_id_, q, start_, rows);
+  Mat2 x0(rows, 2);
+  for (Index r = 0; r < rows; ++r) x0.row(r) = start_[free_nodes_[r]].transpose();
+
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> cg;
+  cg.setTolerance(options.tolerance);
+  cg.setMaxIterations(options.max_iterations);
+  cg.compute(K);
+  Mat2 x(rows, 2);
+  bool converged = cg.info() == Eigen::Success;
+  for (int c = 0; c < 2 && converged; ++c) {
+    x.col(c) = cg.solveWithGuess(b.col(c), x0.col(c));
+    converged = cg.info() == Eigen::Success && x.col(c).allFinite();
+    out.iterations = std::max(out.iterations, static_cast<int>(cg.iterations()));
+    out.residual = std::max(out.residual, cg.error());
+  }
+  if (!converged) {
+    x = direct_solve(K, b);
+    out.direct = true;
+  }
+  out.positions = scatter(net_, free_id_, x, start_);
+  return out;
+}
+
+int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles) {
+  std::vector<double> area(triangles.size());
+  int positive = 0, negative = 0;
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Vec2 e1 = net[triangles[t][1]] - net[triangles[t][0]];
+    const Vec2 e2 = net[triangles[t][2]] - net[triangles[t][0]];
+    area[t] = e1.x() * e2.y() - e1.y() * e2.x();
+    positive += area[t] > 0;
+    negative += area[t] < 0;
+  }
+  const double sign = positive >= negative ? 1.0 : -1.0;
+  return static_cast<int>(std::count_if(area.begin(), area.end(), [&](double a) { return a * sign <= 0; }));
+}
+
+}  // namespace skinslide

@@ -1,0 +1,62 @@
+// The force-density bar net: assembly and solves (Schek 1974; Yang & Zhang 2010, section III.A,
+// equation (1) with zero external forces: D x = -Df xf, D = C^T Q C over the free nodes).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/types.h"
+
+namespace skinslide {
+
+/// The graph of a bar net: nodes 0..node_count-1, bars between them, and which nodes are fixed.
+struct BarNet {
+  Index node_count = 0;
+  std::vector<std::array<Index, 2>> bars;
+  std::vector<char> fixed;  ///< #nodes; 1 = fixed
+};
+
+/// Equilibrium of the net by a direct sparse solve (Eigen SimplicialLDLT, x and y together).
+/// \param q one force density per bar (> 0)
+/// \param positions #nodes; the entries of fixed nodes are used, the others ignored
+/// \return #nodes positions: fixed nodes as given, free nodes in equilibrium
+/// \throw Error(Numeric) when the system is singular (a free node with no path to a fixed one)
+///        or the result is not finite.
+Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q, const Positions2& positions);
+
+struct CgOptions {
+  double tolerance = 1e-12;  ///< stop at |r| <= tolerance * |b| (each of x and y)
+  int max_iterations = 2000;
+};
+
+struct FrameNetSolution {
+  Positions2 positions;    ///< #nodes
+  int iterations = 0;      ///< CG iterations, the larger of x and y
+  double residual = 0;     ///< CG's final |r|/|b|, the larger of x and y
+  bool direct = false;     ///< CG did not converge: solved by SimplicialLDLT instead
+};
+
+/// Solves the same net (same bars, same fixed nodes at the same positions) for many q vectors by
+/// Jacobi-preconditioned conjugate gradient, warm-started at a given net (the paper's frame
+/// unwrap, section III.E). The sparsity pattern is built once; per solve only values change.
+class FrameNetSolver {
+ public:
+  /// \param positions #nodes: fixed nodes at their positions, free nodes at the warm start
+  FrameNetSolver(BarNet net, Positions2 positions);
+  FrameNetSolution solve(const std::vector<double>& q, const CgOptions& options) const;
+  const BarNet& net() const { return net_; }
+
+ private:
+  BarNet net_;
+  Positions2 start_;                    // #nodes
+  std::vector<Index> free_id_;          // node -> row of the free system, -1 if fixed
+  std::vector<Index> free_nodes_;       // row -> node
+  SparseMatrix pattern_;                // K_ff's pattern (values ignored)
+  std::vector<std::array<Index, 4>> slot_;  // per bar: value slots (aa, bb, ab, ba), -1 if none
+};
+
+/// Triangles of `net` whose signed area is zero or of the minority sign (folds of the net).
+int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles);
+
+}  // namespace skinslide

@@ -1,0 +1,24 @@
+// Force densities of the bar net (Yang & Zhang 2010, section III.C, equation (2)).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/types.h"
+#include "pipeline/options.h"
+
+namespace skinslide {
+
+/// 3D length of each bar. `points`: positions indexed by the bars' node ids.
+std::vector<double> bar_lengths(const Positions3& points, const std::vector<std::array<Index, 2>>& bars);
+
+/// Force density of each bar from its length, normalised per patch (Lmin, Lmax of `lengths`):
+///  - Paper:   q = max(1 - L/Lmax, q_floor); without the floor the longest bar has q = 0.
+///  - Inverse: q = max(Lmin/L, q_floor), with L clamped to >= 1e-12 Lmax (long bars soft).
+///  - Uniform: q = 1.
+/// Output: one q per bar, dimensionless, in [q_floor, 1].
+/// \throw Error(Input) when every bar has zero length (a collapsed patch).
+std::vector<double> force_densities(const std::vector<double>& lengths, Density density,
+                                    double q_floor);
+
+}  // namespace skinslide

@@ -1,0 +1,66 @@
+#include "unwrap/square_boundary.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace skinslide {
+
+Index outer_loop(const std::vector<double>& lengths, const std::vector<Index>& starts) {
+  const double longest = *std::max_element(lengths.begin(), lengths.end());
+  Index best = -1;
+  for (Index i = 0; i < static_cast<Index>(lengths.size()); ++i) {
+    if (lengths[i] < longest * (1 - kTieRelative)) continue;
+    if (best < 0 || starts[i] < starts[best]) best = i;
+  }
+  return best;
+}
+
+double loop_length(const Positions3& p) {
+  double l = 0;
+  for (size_t k = 0; k < p.size(); ++k) l += (p[(k + 1) % p.size()] - p[k]).norm();
+  return l;
+}
+
+SquareBoundary square_positions(const Positions3& p) {
+  const Index n = static_cast<Index>(p.size());
+  if (n < 4)
+    throw Error(ErrorKind::Input, "the outer boundary loop has " + std::to_string(n) +
+                                      " vertices; at least 4 are needed for the square's corners");
+  std::vector<double> s(n + 1, 0.0);  // cumulative arc length; s[n] = L
+  for (Index k = 0; k < n; ++k) s[k + 1] = s[k] + (p[(k + 1) % n] - p[k]).norm();
+  const double total = s[n];
+  if (!(total > 0) || !std::isfinite(total))
+    throw Error(ErrorKind::Input, "the outer boundary loop has zero length");
+
+  SquareBoundary out;
+  out.corners[0] = 0;
+  for (int j = 1; j < 4; ++j) {
+    const double target = j * total / 4;
+    double best = INFINITY;
+    for (Index k = 0; k < n; ++k) best = std::min(best, std::abs(s[k] - target));
+    // Uniformly sampled loops put j*L/4 exactly between two vertices; without a tolerance the
+    // choice would flip with round-off and move the whole net.
+    Index k = 0;
+    while (std::abs(s[k] - target) > best + kTieRelative * total) ++k;
+    k = std::max(k, out.corners[j - 1] + 1);
+    k = std::min(k, n - 4 + j);
+    out.corners[j] = k;
+  }
+
+  static const Vec2 kCorner[5] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}};
+  out.positions.resize(n);
+  for (int j = 0; j < 4; ++j) {
+    const Index a = out.corners[j];
+    const Index b = j < 3 ? out.corners[j + 1] : n;
+    const double den = s[b] - s[a];
+    for (Index k = a; k < b; ++k) {
+      const double t = den > 0 ? (s[k] - s[a]) / den : 0.0;
+      out.positions[k] = kCorner[j] + t * (kCorner[j + 1] - kCorner[j]);
+    }
+  }
+  return out;
+}
+
+}  // namespace skinslide

@@ -1,0 +1,70 @@
+#include "io/obj_read.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace skinslide {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_obj("t.obj", text);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ObjRead, ReadsVerticesFacesAndTheirLines) {
+  const ObjMesh obj = parse_obj("t.obj",
+                                "# header\r\nv 0 0 0\r\nv 1 0 0 1.0\nvt 0 0\nv 1 1 0 # c\n"
+                                "v 0 1 0\ng grp\nf 1/1 2/1 3/1 4/1\nf -4 -3 -1\n");
+  EXPECT_EQ(obj.mesh.vertex_count(), 4);
+  ASSERT_EQ(obj.mesh.face_count(), 2);
+  EXPECT_EQ(obj.mesh.face_size(0), 4);
+  EXPECT_EQ(obj.mesh.face_begin(1)[0], 0);  // -4 of 4 = vertex 1
+  EXPECT_EQ(obj.mesh.face_begin(1)[2], 3);
+  EXPECT_EQ(obj.face_lines, (std::vector<long>{8, 9}));
+  EXPECT_EQ(obj.vertex_lines, (std::vector<long>{2, 3, 5, 6}));
+  EXPECT_EQ(obj.mesh.positions[2], Vec3(1, 1, 0));
+}
+
+TEST(ObjRead, VerticesAfterFacesAndForwardReferencesAreValid) {
+  const ObjMesh obj = parse_obj("t.obj", "v 0 0 0\nf 1 2 3\nv 1 0 0\nv 0 1 0\n");
+  EXPECT_EQ(obj.mesh.face_count(), 1);
+  EXPECT_EQ(obj.mesh.vertex_count(), 3);
+}
+
+TEST(ObjRead, RejectsBadInputWithFileAndLine) {
+  EXPECT_EQ(error_of("v 0 0\n"), "t.obj:1: vertex has 2 coordinates; 3 needed");
+  EXPECT_EQ(error_of("v 0 x 0\n"), "t.obj:1: vertex coordinate 'x' is not a number");
+  EXPECT_EQ(error_of("v 0 nan 0\n"), "t.obj:1: vertex coordinate 'nan' is not finite");
+  EXPECT_EQ(error_of("v 0 0 0\nv 1 0 0\nf 1 2\n"), "t.obj:3: face has 2 vertices; at least 3 needed");
+  EXPECT_EQ(error_of("v 0 0 0\nf 0 1 1\n"), "t.obj:2: face index 0 (OBJ indices start at 1)");
+  EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 4\n"),
+            "t.obj:4: face index 4 is out of range (the file has 3 vertices)");
+  EXPECT_EQ(error_of("v 0 0 0\nf -1 -2 -3\n"),
+            "t.obj:2: relative face index -2 reaches before vertex 1 (1 vertices defined so far)");
+  EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nf 1 2 1\n"), "t.obj:3: face uses vertex 1 twice (degenerate face)");
+  EXPECT_EQ(error_of(""), "t.obj: no vertices (`v` lines): empty or not an OBJ file");
+  EXPECT_EQ(error_of(std::string("v 0 0 0\n\x01\x00\x02", 11)),
+            "t.obj:2: binary data (NUL byte): not a text OBJ file");
+  EXPECT_EQ(error_of("v 0 0 0\nf 1 a 3\n"), "t.obj:2: face entry 'a' is not a vertex index");
+}
+
+TEST(ObjRead, EveryPrefixOfAValidFileParsesOrFailsCleanly) {
+  const std::string text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\nf 1 3 4\n";
+  for (size_t n = 0; n <= text.size(); ++n) {
+    try {
+      const ObjMesh obj = parse_obj("t.obj", text.substr(0, n));
+      EXPECT_GE(obj.mesh.vertex_count(), 1);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input) << n;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace skinslide

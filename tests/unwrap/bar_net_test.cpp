@@ -1,0 +1,133 @@
+#include "unwrap/bar_net.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace skinslide {
+namespace {
+
+BarNet star() {  // four fixed corners, one free centre
+  BarNet net;
+  net.node_count = 5;
+  net.bars = {{0, 4}, {1, 4}, {2, 4}, {3, 4}, {0, 1}};
+  net.fixed = {1, 1, 1, 1, 0};
+  return net;
+}
+
+Positions2 corners() { return {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {7, 7}}; }
+
+TEST(BarNet, OneFreeNodeSitsAtTheQWeightedMeanOfItsNeighbours) {
+  const Positions2 x = solve_bar_net(star(), {3, 1, 1, 1, 5}, corners());
+  EXPECT_NEAR(x[4].x(), 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(x[4].y(), 1.0 / 3.0, 1e-15);
+  EXPECT_EQ(x[0], Vec2(0, 0));  // fixed nodes as given
+}
+
+TEST(BarNet, ChainOfTwoFreeNodesMatchesTheHandSolution) {
+  BarNet net;
+  net.node_count = 4;
+  net.bars = {{0, 1}, {1, 2}, {2, 3}};
+  net.fixed = {1, 0, 0, 1};
+  const Positions2 x = solve_bar_net(net, {1, 2, 1}, {{0, 0}, {0, 0}, {0, 0}, {3, 0}});
+  EXPECT_NEAR(x[1].x(), 1.2, 1e-14);
+  EXPECT_NEAR(x[2].x(), 1.8, 1e-14);
+}
+
+TEST(BarNet, AFreeNodeWithNoPathToAFixedOneIsANumericError) {
+  BarNet net;
+  net.node_count = 3;
+  net.bars = {{0, 1}};
+  net.fixed = {1, 0, 0};
+  try {
+    solve_bar_net(net, {1}, {{0, 0}, {0, 0}, {0, 0}});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Numeric);
+  }
+}
+
+// A random grid net, border fixed on the unit square, seeded.
+struct GridNet {
+  BarNet net;
+  Positions2 start;
+};
+GridNet grid_net(int n) {
+  GridNet g;
+  g.net.node_count = (n + 1) * (n + 1);
+  g.net.fixed.assign(g.net.node_count, 0);
+  g.start.assign(g.net.node_count, Vec2(0.5, 0.5));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const Index v = j * (n + 1) + i;
+      if (i == 0 || j == 0 || i == n || j == n) {
+        g.net.fixed[v] = 1;
+        g.start[v] = Vec2(double(i) / n, double(j) / n);
+      }
+      if (i < n) g.net.bars.push_back({v, v + 1});
+      if (j < n) g.net.bars.push_back({v, v + n + 1});
+    }
+  return g;
+}
+
+// max over free nodes of |sum_j q_ij (x_j - x_i)|: the net force, zero at equilibrium.
+double net_force(const BarNet& net, const std::vector<double>& q, const Positions2& x) {
+  Positions2 f(net.node_count, Vec2::Zero());
+  for (size_t i = 0; i < net.bars.size(); ++i) {
+    const auto [a, b] = net.bars[i];
+    f[a] += q[i] * (x[b] - x[a]);
+    f[b] += q[i] * (x[a] - x[b]);
+  }
+  double worst = 0;
+  for (Index v = 0; v < net.node_count; ++v)
+    if (!net.fixed[v]) worst = std::max(worst, f[v].norm());
+  return worst;
+}
+
+TEST(BarNet, DirectAndWarmStartedCgReachEquilibriumOnRandomNets) {
+  std::mt19937 rng{0};
+  std::uniform_real_distribution<double> uq(1e-3, 1.0);
+  const GridNet g = grid_net(30);
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> q(g.net.bars.size());
+    for (double& v : q) v = uq(rng);
+    const Positions2 direct = solve_bar_net(g.net, q, g.start);
+    EXPECT_LT(net_force(g.net, q, direct), 1e-12);
+
+    const FrameNetSolver solver(g.net, direct);  // warm start at the exact answer: 0 iterations
+    const FrameNetSolution same = solver.solve(q, {1e-12, 1000});
+    EXPECT_EQ(same.iterations, 0);
+    EXPECT_FALSE(same.direct);
+
+    std::vector<double> q2 = q;
+    for (double& v : q2) v *= 1.0 + 0.2 * (uq(rng) - 0.5);
+    const FrameNetSolution cg = solver.solve(q2, {1e-12, 1000});
+    EXPECT_FALSE(cg.direct);
+    EXPECT_GT(cg.iterations, 0);
+    EXPECT_LE(cg.residual, 1e-12);
+    EXPECT_LT(net_force(g.net, q2, cg.positions), 1e-10);
+    const Positions2 exact = solve_bar_net(g.net, q2, g.start);
+    for (Index v = 0; v < g.net.node_count; ++v) EXPECT_NEAR((cg.positions[v] - exact[v]).norm(), 0, 1e-9);
+  }
+}
+
+TEST(BarNet, CgFallsBackToADirectSolveWhenItRunsOutOfIterations) {
+  const GridNet g = grid_net(20);
+  const std::vector<double> q(g.net.bars.size(), 1.0);
+  const FrameNetSolver solver(g.net, g.start);
+  const FrameNetSolution s = solver.solve(q, {1e-14, 2});
+  EXPECT_TRUE(s.direct);
+  EXPECT_LT(net_force(g.net, q, s.positions), 1e-12);
+}
+
+TEST(BarNet, FlippedTrianglesCountsTheMinorityOrientation) {
+  const Positions2 x{{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {1, 3, 2}}), 0);
+  EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {1, 3, 2}, {0, 2, 1}}), 1);
+  EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {0, 1, 1}}), 1);  // zero area counts
+}
+
+}  // namespace
+}  // namespace skinslide
