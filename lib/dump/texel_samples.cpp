@@ -1,15 +1,9 @@
 #include "dump/texel_samples.h"
 
 #include "core/check.h"
+#include "locate/barycentric.h"
 
 namespace skinslide {
-namespace {
-
-double cross(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
-}  // namespace
 
 std::vector<TexelSample> texel_samples(const Positions2& net,
                                        const std::vector<Triangle>& triangles, int size) {
@@ -29,19 +23,14 @@ std::vector<TexelSample> texel_samples(const Positions2& net,
       if (id == 0) continue;
       SKINSLIDE_CHECK(id <= triangles.size(), "ID image names a triangle the net lacks");
       const Triangle& t = triangles[id - 1];
-      const Vec2& a = net[t[0]];
-      const Vec2& b = net[t[1]];
-      const Vec2& c = net[t[2]];
-      const Vec2 p((i + 0.5) / size, (j + 0.5) / size);
-      // Signed areas: the ratios are right for either orientation, and id_raster() never puts a
-      // degenerate triangle in a pixel, so abc != 0.
-      const double abc = cross(a, b, c);
-      SKINSLIDE_CHECK(abc != 0, "degenerate triangle in the ID image");
+      // The same area test as point location, so the weights are the ones a vertex at this
+      // texel centre would get. id_raster() never puts a degenerate triangle in a pixel.
+      const Barycentric w =
+          barycentric(Vec2((i + 0.5) / size, (j + 0.5) / size), net[t[0]], net[t[1]], net[t[2]]);
+      SKINSLIDE_CHECK(w.ok, "degenerate triangle in the ID image");
       TexelSample& s = samples[static_cast<size_t>(j) * size + i];
       s.triangle = static_cast<Index>(id - 1);
-      s.weight[1] = cross(a, p, c) / abc;
-      s.weight[2] = cross(a, b, p) / abc;
-      s.weight[0] = 1.0 - s.weight[1] - s.weight[2];
+      s.weight = w.w;
     }
   }
   return samples;
