@@ -23,6 +23,7 @@
 #include "io/number_format.h"
 #include "io/patch_file.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/dumps.h"
 #include "pipeline/slide_frame.h"
 #include "progress.h"
 
@@ -36,6 +37,9 @@ struct CliOptions {
   std::string bind;
   std::vector<std::string> frames;
   std::string output = "slid";
+  std::string dump_dir;     // --dump: EXR images of the nets; empty = none
+  std::string preview_dir;  // --preview: PNG pictures of the nets; empty = none
+  int preview_size = 1024;
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
@@ -131,10 +135,18 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
   require_same_topology(bind, frame);
   FrameResult result;
   try {
-    result = slide_frame(setup, frame.mesh.positions);
+    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
   } catch (const Error& e) {
     throw Error(e.kind(), frame_path + ": " + e.what());
   }
+  // Dumps and previews first: the slid frame appears only once everything of its frame is written.
+  DumpOptions dump_options;
+  dump_options.preview_size = o.preview_size;
+  if (!o.dump_dir.empty())
+    write_frame_dumps(o.dump_dir, frame_path, setup, frame.mesh.positions, result.patches,
+                      dump_options);
+  if (!o.preview_dir.empty())
+    write_previews(o.preview_dir, frame_path, setup, result.patches, dump_options);
   write_slid_mesh_file(frame, result.slid, out_path);
   const FrameSummary s = summarise(result);
   std::vector<std::string> lines;
@@ -163,6 +175,7 @@ int run(const CliOptions& o) {
       o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
   const SlideOptions options = slide_options(o);
   const std::vector<std::string> outputs = output_paths(o);
+  if (!o.dump_dir.empty() || !o.preview_dir.empty()) check_dump_stems(o.frames);
 
   const MeshFile bind = read_mesh_file(o.bind);
   std::vector<std::vector<Index>> selections;
@@ -185,6 +198,7 @@ int run(const CliOptions& o) {
                    n.skipped ? " (skipped)" : "", n.bind_net_flips);
     }
   make_output_dir(o.output);
+  if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
 
   const size_t count = o.frames.size();
   unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
@@ -250,6 +264,21 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", o.output, "Folder for the slid frames (same file names)")
       ->capture_default_str()
       ->type_name("DIR")
+      ->group(out);
+
+  app.add_option("--dump", o.dump_dir,
+                 "Folder for EXR images of each patch's nets: ID lookup image and geometry image "
+                 "(P, coverage, slide field), for the bind and every frame (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview", o.preview_dir,
+                 "Folder for a PNG per frame and patch: bind net and frame net drawn over each "
+                 "other, slides marked (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview-size", o.preview_size, "Side of the preview PNGs, pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 8192))
       ->group(out);
 
   auto* method = "Method";
