@@ -27,6 +27,7 @@
 #include "io/obj_write.h"
 #include "io/patch_file.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/dumps.h"
 #include "pipeline/rig_frames.h"
 #include "pipeline/slide_frame.h"
 #include "progress.h"
@@ -41,6 +42,9 @@ struct CliOptions {
   std::string bind;
   std::vector<std::string> frames;
   std::string output = "slid";
+  std::string dump_dir;     // --dump: EXR images of the nets; empty = none
+  std::string preview_dir;  // --preview: PNG pictures of the nets; empty = none
+  int preview_size = 1024;
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
@@ -139,6 +143,18 @@ std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& 
                                       const FrameResult& result, const std::string& frame_path,
                                       const std::string& out_path);
 
+// A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
+// so the slid frame appears only once everything of its frame is written.
+void write_frame_pictures(const BindSetup& setup, const CliOptions& o, const std::string& named_after,
+                          const Positions3& frame_positions, const FrameResult& result) {
+  DumpOptions dump_options;
+  dump_options.preview_size = o.preview_size;
+  if (!o.dump_dir.empty())
+    write_frame_dumps(o.dump_dir, named_after, setup, frame_positions, result.patches, dump_options);
+  if (!o.preview_dir.empty())
+    write_previews(o.preview_dir, named_after, setup, result.patches, dump_options);
+}
+
 // Reads, checks, slides and writes one frame; returns the log lines for it.
 std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind, const CliOptions& o,
                                    const std::string& frame_path, const std::string& out_path) {
@@ -146,10 +162,11 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
   require_same_topology(bind, frame);
   FrameResult result;
   try {
-    result = slide_frame(setup, frame.mesh.positions);
+    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
   } catch (const Error& e) {
     throw Error(e.kind(), frame_path + ": " + e.what());
   }
+  write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
   write_slid_mesh_file(frame, result.slid, out_path);
   return frame_report(setup, o, result, frame_path, out_path);
 }
@@ -162,10 +179,11 @@ std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& c
   const MeshFile frame = rig_frame(character, clip, k);
   FrameResult result;
   try {
-    result = slide_frame(setup, frame.mesh.positions);
+    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
   } catch (const Error& e) {
     throw Error(e.kind(), label + ": " + e.what());
   }
+  write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
   if (o.format == "obj")
     write_file_atomic(out_path, obj_text(frame.mesh, apply_slide(frame.mesh.positions, result.slid),
                                          character.path + ", " + label + ", slid"));
@@ -204,6 +222,7 @@ int run(const CliOptions& o) {
       o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
   const SlideOptions options = slide_options(o);
   std::vector<std::string> outputs = o.rig ? std::vector<std::string>{} : output_paths(o);
+  if (!o.rig && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
   // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
@@ -242,6 +261,7 @@ int run(const CliOptions& o) {
                    n.skipped ? " (skipped)" : "", n.bind_net_flips);
     }
   make_output_dir(o.output);
+  if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
 
   const size_t count = outputs.size();
   unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
@@ -342,6 +362,21 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", o.output, "Folder for the slid frames (same file names)")
       ->capture_default_str()
       ->type_name("DIR")
+      ->group(out);
+
+  app.add_option("--dump", o.dump_dir,
+                 "Folder for EXR images of each patch's nets: ID lookup image and geometry image "
+                 "(P, coverage, slide field), for the bind and every frame (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview", o.preview_dir,
+                 "Folder for a PNG per frame and patch: bind net and frame net drawn over each "
+                 "other, slides marked (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview-size", o.preview_size, "Side of the preview PNGs, pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 8192))
       ->group(out);
 
   auto* method = "Method";

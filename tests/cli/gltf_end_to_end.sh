@@ -50,6 +50,14 @@ check "--threads 1 and 2 give identical bytes" diff -r "$tmp/rs.t1" "$tmp/rs.t2"
 check "--keyframes is the default" \
   "$bin" -q --keyframes --patch "$patch" --animation 0 "$simple" -o "$tmp/rs.keys"
 check "--keyframes gives the same bytes" diff -r "$tmp/rs.t1" "$tmp/rs.keys"
+check "--dump and --preview with --animation run" \
+  "$bin" -q --patch "$patch" --animation 0 "$simple" -o "$tmp/rs.dumped" \
+  --dump "$tmp/rs.dump" --preview "$tmp/rs.prev"
+check "a rig frame's dumps and preview are named after its output" \
+  [ -f "$tmp/rs.dump/RiggedSimple.0049.patch000.id.exr" -a \
+    -f "$tmp/rs.dump/RiggedSimple.0049.patch000.geom.exr" -a \
+    -f "$tmp/rs.dump/bind.patch000.id.exr" -a -f "$tmp/rs.prev/RiggedSimple.0049.patch000.png" ]
+check "dumps change nothing in the slid frames" diff -r "$tmp/rs.t1" "$tmp/rs.dumped"
 check "--fps 12 --format obj runs" \
   "$bin" -q --fps 12 --format obj --patch "$patch" --animation 0 "$simple" -o "$tmp/rs.obj"
 check "--fps 12 samples 2.04 s into 25 OBJ frames" [ "$(ls "$tmp/rs.obj"/*.obj | wc -l)" -eq 25 ]
