@@ -6,11 +6,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
+#include <chrono>
 #include <clocale>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -25,10 +28,14 @@
 #include "io/mesh_file.h"
 #include "io/number_format.h"
 #include "io/obj_write.h"
+#include "io/obj_read.h"
 #include "io/patch_file.h"
+#include "io/vertex_list.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/frame_ranges.h"
+#include "pipeline/dumps.h"
 #include "pipeline/rig_frames.h"
+#include "pipeline/report.h"
 #include "pipeline/slide_frame.h"
 #include "progress.h"
 
@@ -42,6 +49,9 @@ struct CliOptions {
   std::string bind;
   std::vector<std::string> frames;
   std::string output = "slid";
+  std::string dump_dir;     // --dump: EXR images of the nets; empty = none
+  std::string preview_dir;  // --preview: PNG pictures of the nets; empty = none
+  int preview_size = 1024;
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
@@ -59,7 +69,64 @@ struct CliOptions {
   double fps = 0;         // 0 = the clip's key times
   bool keyframes = false; // --keyframes: the default, spelled out
   std::string format = "glb";  // of the slid rig frames: obj or glb
+  // Controls (README "Controls")
+  std::string weights;
+  std::string weights_color;
+  double strength = 1;
+  std::string pin;
+  std::vector<std::string> corners;
+  std::vector<int> outer_loop_vertices;
+  std::string report;
+  bool report_no_timings = false;
 };
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// "a,b,c,d" -> four vertex ids.
+std::array<Index, 4> parse_corners(const std::string& text) {
+  std::array<Index, 4> c{};
+  size_t pos = 0;
+  for (int j = 0; j < 4; ++j) {
+    const size_t comma = j < 3 ? text.find(',', pos) : text.size();
+    const auto id = comma == std::string::npos ? std::nullopt
+                                               : parse_integer(std::string_view(text).substr(pos, comma - pos));
+    if (!id || *id < 0 || *id > 2147483647LL || (j < 3 && comma == text.size()))
+      throw Error(ErrorKind::Usage, "--corners " + text +
+                                        ": expected four vertex ids a,b,c,d (the outer loop's "
+                                        "corners in walking order)");
+    c[j] = static_cast<Index>(*id);
+    pos = comma + 1;
+  }
+  return c;
+}
+
+// The controls read from their files (after the bind: ids are checked against it).
+SlideControls slide_controls(const CliOptions& o, const MeshFile& bind, RunReport& report) {
+  SlideControls c;
+  const Index nv = bind.mesh.vertex_count();
+  if (!o.weights.empty()) {
+    c.weight = read_weights(o.weights, nv);
+    report.weights = o.weights;
+  } else if (!o.weights_color.empty()) {
+    if (!bind.obj)
+      throw Error(ErrorKind::Usage, "--weights-from-obj-color needs an OBJ bind; " + o.bind + " is not one");
+    const int channel = o.weights_color == "r" ? 0 : o.weights_color == "g" ? 1 : 2;
+    c.weight = obj_color_weights(o.bind, *bind.obj, channel);
+    report.weights = o.bind + " (vertex colour " + o.weights_color + ")";
+  }
+  c.strength = o.strength;
+  report.strength = o.strength;
+  if (!o.pin.empty()) {
+    c.pins = read_vertex_list(o.pin, nv);
+    report.pins = o.pin;
+    report.pins_requested = static_cast<Index>(c.pins.size());
+  }
+  for (const std::string& t : o.corners) c.corners.push_back(parse_corners(t));
+  for (int v : o.outer_loop_vertices) c.outer_loop_vertices.push_back(v);
+  return c;
+}
 
 std::string fmt(double x) {
   char buf[32];
@@ -80,6 +147,8 @@ std::vector<std::string> output_paths(const CliOptions& o) {
   std::vector<std::string> inputs = o.frames;
   inputs.push_back(o.bind);
   inputs.insert(inputs.end(), o.patches.begin(), o.patches.end());
+  for (const std::string* f : {&o.weights, &o.pin})
+    if (!f->empty()) inputs.push_back(*f);
   std::vector<std::string> out;
   std::set<std::string> names;
   for (const std::string& f : o.frames) {
@@ -93,6 +162,14 @@ std::vector<std::string> output_paths(const CliOptions& o) {
         throw Error(ErrorKind::Usage, "output " + target.string() + " would overwrite input " + in +
                                           "; choose another --output folder");
     out.push_back(target.string());
+  }
+  if (!o.report.empty()) {
+    for (const std::string& in : inputs)
+      if (same_file(o.report, in))
+        throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);
+    for (const std::string& f : out)
+      if (same_file(o.report, f))
+        throw Error(ErrorKind::Usage, "--report " + o.report + " is also the output of a frame");
   }
   return out;
 }
@@ -173,38 +250,75 @@ std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& 
                                       const FrameResult& result, const std::string& frame_path,
                                       const std::string& out_path);
 
+// The report's record of one frame: its figures, not its nets.
+void record_frame(ReportFrame& record, const std::string& source, const std::string& out_path,
+                  double read_seconds, double write_seconds, const FrameResult& result) {
+  record.path = source;
+  record.output = out_path;
+  record.read_seconds = read_seconds;
+  record.write_seconds = write_seconds;
+  record.patches = result.patches;
+  for (PatchFrameReport& r : record.patches) {
+    r.frame_net = {};
+    r.id_image = {};
+  }
+}
+
+// A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
+// so the slid frame appears only once everything of its frame is written.
+void write_frame_pictures(const BindSetup& setup, const CliOptions& o, const std::string& named_after,
+                          const Positions3& frame_positions, const FrameResult& result) {
+  DumpOptions dump_options;
+  dump_options.preview_size = o.preview_size;
+  if (!o.dump_dir.empty())
+    write_frame_dumps(o.dump_dir, named_after, setup, frame_positions, result.patches, dump_options);
+  if (!o.preview_dir.empty())
+    write_previews(o.preview_dir, named_after, setup, result.patches, dump_options);
+}
+
 // Reads, checks, slides and writes one frame; returns the log lines for it.
 std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind, const CliOptions& o,
-                                   const std::string& frame_path, const std::string& out_path) {
+                                   const std::string& frame_path, const std::string& out_path,
+                                   ReportFrame* record) {
+  auto t0 = std::chrono::steady_clock::now();
   const MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
+  const double read_seconds = seconds_since(t0);
   FrameResult result;
   try {
-    result = slide_frame(setup, frame.mesh.positions);
+    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
   } catch (const Error& e) {
     throw Error(e.kind(), frame_path + ": " + e.what());
   }
+  write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
+  t0 = std::chrono::steady_clock::now();
   write_slid_mesh_file(frame, result.slid, out_path);
+  if (record) record_frame(*record, frame_path, out_path, read_seconds, seconds_since(t0), result);
   return frame_report(setup, o, result, frame_path, out_path);
 }
 
 // Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB.
 std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& character,
                                        const RigClip& clip, const CliOptions& o, size_t k,
-                                       const std::string& out_path) {
+                                       const std::string& out_path, ReportFrame* record) {
   const std::string label = clip.names[k] + " (t = " + fmt(clip.times[k]) + " s)";
+  auto t0 = std::chrono::steady_clock::now();
   const MeshFile frame = rig_frame(character, clip, k);
+  const double pose_seconds = seconds_since(t0);
   FrameResult result;
   try {
-    result = slide_frame(setup, frame.mesh.positions);
+    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
   } catch (const Error& e) {
     throw Error(e.kind(), label + ": " + e.what());
   }
+  write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
+  t0 = std::chrono::steady_clock::now();
   if (o.format == "obj")
     write_file_atomic(out_path, obj_text(frame.mesh, apply_slide(frame.mesh.positions, result.slid),
                                          character.path + ", " + label + ", slid"));
   else
     write_gltf_file(frame, result.slid, out_path);
+  if (record) record_frame(*record, label, out_path, pose_seconds, seconds_since(t0), result);
   return frame_report(setup, o, result, label, out_path);
 }
 
@@ -236,12 +350,14 @@ std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& 
 int run(const CliOptions& o) {
   const cli::Verbosity verbosity =
       o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
+  const auto t_run = std::chrono::steady_clock::now();
   const SlideOptions options = slide_options(o);
   const std::vector<FrameRange> ranges =
       o.frame_ranges.empty() ? std::vector<FrameRange>{} : parse_frame_ranges(o.frame_ranges);
   std::vector<std::string> outputs = o.rig ? std::vector<std::string>{} : output_paths(o);
   std::vector<size_t> chosen;
   if (!o.rig) chosen = chosen_frames(ranges, outputs, o.frames, o.frame_ranges);
+  if (!o.rig && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
   // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
@@ -264,9 +380,12 @@ int run(const CliOptions& o) {
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
-  const BindSetup setup = bind_setup(bind.mesh, selections, options, [&](Index f) {
+  RunReport report;
+  const SlideControls controls = slide_controls(o, bind, report);
+  const BindSetup setup = bind_setup(bind.mesh, selections, options, controls, [&](Index f) {
     return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
   });
+  report.bind_seconds = seconds_since(t_run);
   size_t sliding = 0;
   for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
   if (verbosity != cli::Verbosity::Quiet)
@@ -279,8 +398,17 @@ int run(const CliOptions& o) {
       std::fprintf(stderr, "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n",
                    p, n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
                    n.skipped ? " (skipped)" : "", n.bind_net_flips);
+      if (!n.skipped)
+        std::fprintf(stderr, "    outer loop from vertex %d%s, corners %d,%d,%d,%d%s, %zu pinned\n",
+                     n.vertices[n.loops[n.outer_loop].front()], n.outer_loop_chosen ? " (chosen)" : "",
+                     n.vertices[n.corners[0]], n.vertices[n.corners[1]], n.vertices[n.corners[2]],
+                     n.vertices[n.corners[3]], n.corners_chosen ? " (chosen)" : "", n.pinned.size());
     }
+  if (verbosity == cli::Verbosity::Verbose && !controls.pins.empty())
+    std::fprintf(stderr, "  %zu pins, %d of them on a boundary loop or outside every patch (ignored)\n",
+                 controls.pins.size(), setup.pins_ignored);
   make_output_dir(o.output);
+  if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
 
   const size_t count = chosen.size();
   unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
@@ -289,12 +417,14 @@ int run(const CliOptions& o) {
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
   std::vector<std::unique_ptr<Error>> errors(count);
+  if (!o.report.empty()) report.frames.resize(count);
   auto worker = [&] {
     for (size_t j; !stop && (j = next++) < count;) {
       const size_t i = chosen[j];
       try {
-        progress.done(j, o.rig ? run_rig_frame(setup, bind, clip, o, i, outputs[i])
-                               : run_frame(setup, bind, o, o.frames[i], outputs[i]));
+        ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
+        progress.done(j, o.rig ? run_rig_frame(setup, bind, clip, o, i, outputs[i], record)
+                               : run_frame(setup, bind, o, o.frames[i], outputs[i], record));
         continue;
       } catch (const Error& e) {
         errors[j] = std::make_unique<Error>(e);
@@ -327,6 +457,15 @@ int run(const CliOptions& o) {
   if (first && !o.keep_going) throw *first;
   for (const auto& e : errors)
     if (e) std::fprintf(stderr, "skinslide: error: %s\n", e->what());
+  if (!o.report.empty()) {
+    report.bind = o.bind;
+    report.patch_files = o.patches;
+    report.timings = !o.report_no_timings;
+    report.wall_seconds = seconds_since(t_run);
+    // --keep-going: the report lists the frames written.
+    std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });
+    write_file_atomic(o.report, report_json(setup, report));
+  }
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
     std::fprintf(stderr, "skinslide: %zu frames slid%s in %.2f s -> %s\n", count - failed,
                  failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
@@ -402,6 +541,21 @@ int main(int argc, char** argv) {
       ->type_name("DIR")
       ->group(out);
 
+  app.add_option("--dump", o.dump_dir,
+                 "Folder for EXR images of each patch's nets: ID lookup image and geometry image "
+                 "(P, coverage, slide field), for the bind and every frame (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview", o.preview_dir,
+                 "Folder for a PNG per frame and patch: bind net and frame net drawn over each "
+                 "other, slides marked (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview-size", o.preview_size, "Side of the preview PNGs, pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 8192))
+      ->group(out);
+
   auto* method = "Method";
   app.add_option("--density", o.density,
                  "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
@@ -450,6 +604,57 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run_group);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run_group);
   app.get_option("--quiet")->excludes("--verbose");
+  app.set_config("--config", "", "Read options from a TOML or INI file (`density = \"paper\"`); "
+                                 "the command line overrides it")
+      ->type_name("FILE")
+      ->check(CLI::ExistingFile)
+      ->group(run_group);
+
+  auto* controls = "Controls";
+  auto* weights =
+      app.add_option("--weights", o.weights,
+                     "Slide weights in [0,1]: one a line in vertex order, or 'index weight' pairs "
+                     "(unlisted = 0); output = lerp(frame, slid, weight)")
+          ->type_name("FILE")
+          ->group(controls);
+  app.add_option("--weights-from-obj-color", o.weights_color,
+                 "Slide weights from the bind OBJ's vertex colours (v x y z r g b), this channel")
+      ->check(CLI::IsMember({"r", "g", "b"}))
+      ->excludes(weights)
+      ->group(controls);
+  app.add_option("--strength", o.strength,
+                 "Multiplies every slide weight; the product is clamped to [0,1]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6))
+      ->group(controls);
+  app.add_option("--pin", o.pin,
+                 "Vertex ids that do not slide (12, 12-40, pBody.vtx[12:40]); the skin around "
+                 "them does")
+      ->type_name("FILE")
+      ->group(controls);
+  app.add_option("--corners", o.corners,
+                 "Four vertex ids on a patch's boundary loop, in walking order, for the square's "
+                 "corners (0,0) (1,0) (1,1) (0,1); that loop becomes the outer loop (repeatable: "
+                 "one per patch)")
+      ->type_name("A,B,C,D")
+      ->allow_extra_args(false)
+      ->group(controls);
+  app.add_option("--outer-loop-vertex", o.outer_loop_vertices,
+                 "A vertex id on the boundary loop to put on the square (repeatable: one per patch)")
+      ->type_name("V")
+      ->allow_extra_args(false)
+      ->check(CLI::Range(0, 2147483647))
+      ->group(controls);
+  auto* report_opt =
+      app.add_option("--report", o.report,
+                     "Write a JSON report: per frame and patch CG, location, slide and edge-spread "
+                     "figures, totals and timings")
+          ->type_name("FILE.json")
+          ->group(controls);
+  app.add_flag("--report-no-timings", o.report_no_timings,
+               "Leave the timings out of the report (it then depends on the inputs only)")
+      ->needs(report_opt)
+      ->group(controls);
 
   try {
     app.parse(argc, argv);

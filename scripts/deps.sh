@@ -9,6 +9,9 @@ packages=(
   libstb-dev libgtest-dev
   python3-numpy python3-scipy
 )
+# The Khronos glTF validator (scripts/gltf_validate.sh) runs on node; the tests skip it, saying
+# so, only where npm cannot reach its registry.
+if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 # scripts/fuzz.sh only (not the main build): clang with libFuzzer and the sanitizer runtimes.
 if [ "${SKINSLIDE_FUZZ_DEPS:-0}" = 1 ]; then
   packages+=(clang libclang-rt-14-dev)

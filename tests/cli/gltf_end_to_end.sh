@@ -50,6 +50,14 @@ check "--threads 1 and 2 give identical bytes" diff -r "$tmp/rs.t1" "$tmp/rs.t2"
 check "--keyframes is the default" \
   "$bin" -q --keyframes --patch "$patch" --animation 0 "$simple" -o "$tmp/rs.keys"
 check "--keyframes gives the same bytes" diff -r "$tmp/rs.t1" "$tmp/rs.keys"
+check "--dump and --preview with --animation run" \
+  "$bin" -q --patch "$patch" --animation 0 "$simple" -o "$tmp/rs.dumped" \
+  --dump "$tmp/rs.dump" --preview "$tmp/rs.prev"
+check "a rig frame's dumps and preview are named after its output" \
+  [ -f "$tmp/rs.dump/RiggedSimple.0049.patch000.id.exr" -a \
+    -f "$tmp/rs.dump/RiggedSimple.0049.patch000.geom.exr" -a \
+    -f "$tmp/rs.dump/bind.patch000.id.exr" -a -f "$tmp/rs.prev/RiggedSimple.0049.patch000.png" ]
+check "dumps change nothing in the slid frames" diff -r "$tmp/rs.t1" "$tmp/rs.dumped"
 check "--fps 12 --format obj runs" \
   "$bin" -q --fps 12 --format obj --patch "$patch" --animation 0 "$simple" -o "$tmp/rs.obj"
 check "--fps 12 samples 2.04 s into 25 OBJ frames" [ "$(ls "$tmp/rs.obj"/*.obj | wc -l)" -eq 25 ]
@@ -57,8 +65,29 @@ check "the OBJ frames have the welded mesh: 96 v and 188 f lines" \
   [ "$(grep -c '^v ' "$tmp/rs.obj/RiggedSimple.0012.obj")" -eq 96 -a \
     "$(grep -c '^f ' "$tmp/rs.obj/RiggedSimple.0012.obj")" -eq 188 ]
 
+# glTF BIND and FRAME files (and OBJ mixed with glTF) through io/mesh_file.cpp's dispatcher.
+"$bin" -q --patch "$patch" "$simple" "$tmp/rs.t1/RiggedSimple.0010.glb" "$tmp/rs.t1/RiggedSimple.0024.glb" \
+  -o "$tmp/files" 2>"$tmp/stderr"
+rc=$?
+if [ "$rc" -eq 2 ] && grep -q "unknown mesh format" "$tmp/stderr"; then
+  echo "SKIP: glTF BIND/FRAME files: io/mesh_file.cpp does not dispatch .gltf/.glb yet" >&2
+else
+  check "a glTF bind with glTF frames runs" [ "$rc" -eq 0 ]
+  check "each glTF frame gives a GLB of the same name" \
+    [ -f "$tmp/files/RiggedSimple.0010.glb" -a -f "$tmp/files/RiggedSimple.0024.glb" ]
+  check "an OBJ bind with a glTF frame runs" \
+    "$bin" -q --patch "$patch" "$tmp/rs.obj/RiggedSimple.0000.obj" "$tmp/rs.t1/RiggedSimple.0024.glb" -o "$tmp/mixed"
+  check "a glTF bind with an OBJ frame runs" \
+    "$bin" -q --patch "$patch" "$simple" "$tmp/rs.obj/RiggedSimple.0012.obj" -o "$tmp/mixed2"
+  check "--mesh picks the mesh by index" \
+    "$bin" -q --mesh 0 --patch "$patch" "$simple" "$tmp/rs.t1/RiggedSimple.0010.glb" -o "$tmp/files.m0"
+  check "--mesh 0 gives the same bytes" \
+    cmp "$tmp/files/RiggedSimple.0010.glb" "$tmp/files.m0/RiggedSimple.0010.glb"
+fi
+
 # Every GLB written above passes the Khronos validator (skipped, saying so, when unavailable).
-bash "$root/scripts/gltf_validate.sh" "$tmp/rs.t1"/*.glb >"$tmp/validate" 2>&1
+bash "$root/scripts/gltf_validate.sh" "$tmp/rs.t1"/*.glb $(ls "$tmp"/files/*.glb "$tmp"/mixed/*.glb 2>/dev/null) \
+  >"$tmp/validate" 2>&1
 rc=$?
 if [ "$rc" -eq 2 ]; then
   echo "SKIP: the Khronos glTF validator is unavailable: $(tail -1 "$tmp/validate")" >&2

@@ -113,7 +113,8 @@ std::string base64_for_test(const std::vector<unsigned char>& d) {
 
 const float kNormals0[4][3] = {{0, 0, 1}, {0, -0.6f, 0.8f}, {0.6f, 0, 0.8f}, {0, 0, 1}};
 
-std::string handmade_gltf() {
+// The JSON with "@BUFFER@" where the buffer's URI goes, and the buffer's bytes.
+std::pair<std::string, std::vector<unsigned char>> handmade_parts() {
   Bytes b;
   const float p0[4][3] = {{1, 1, 0}, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}};
   for (int i = 0; i < 4; ++i) {  // bv0: interleaved, 96 bytes
@@ -146,8 +147,7 @@ std::string handmade_gltf() {
     {"attributes": {"POSITION": 3, "NORMAL": 4}, "mode": 6},
     {"attributes": {"POSITION": 5}},
     {"attributes": {"POSITION": 5}, "mode": 0}]}],
-  "buffers": [{"byteLength": 208, "uri": "data:application/octet-stream;base64,)" +
-                           base64_for_test(b.data) + R"("}],
+  "buffers": [{"byteLength": 208, "uri": "@BUFFER@"}],
   "bufferViews": [
     {"buffer": 0, "byteOffset": 0, "byteLength": 96, "byteStride": 24, "target": 34962},
     {"buffer": 0, "byteOffset": 96, "byteLength": 12, "target": 34963},
@@ -165,7 +165,13 @@ std::string handmade_gltf() {
     {"bufferView": 4, "componentType": 5126, "count": 3, "type": "VEC3", "min": [10, 0, 0], "max": [11, 1, 5],
      "sparse": {"count": 1, "indices": {"bufferView": 5, "componentType": 5121}, "values": {"bufferView": 6}}}]
 })";
-  return json;
+  return {json, b.data};
+}
+
+std::string handmade_gltf() {
+  auto [json, bytes] = handmade_parts();
+  return json.replace(json.find("@BUFFER@"), 8,
+                      "data:application/octet-stream;base64," + base64_for_test(bytes));
 }
 
 std::string write_text(const fs::path& path, const std::string& text) {
@@ -441,6 +447,45 @@ TEST(GltfWrite, UnwritableTargetIsAnOutputErrorAndLeavesNoFile) {
     EXPECT_EQ(e.kind(), ErrorKind::Output);
   }
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+
+// A 1x1 RGBA PNG.
+const std::vector<unsigned char> kPng = {
+    0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52,
+    0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1F, 0x15, 0xC4,
+    0x89, 0x00, 0x00, 0x00, 0x0A, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9C, 0x63, 0x00, 0x01, 0x00, 0x00,
+    0x05, 0x00, 0x01, 0x0D, 0x0A, 0x2D, 0xB4, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE,
+    0x42, 0x60, 0x82};
+
+TEST(GltfWrite, ExternalBuffersAndImagesStayReachableFromAnotherFolder) {
+  const fs::path dir = temp_dir();
+  auto [json, bytes] = handmade_parts();
+  json.replace(json.find("@BUFFER@"), 8, "square.bin");
+  json.replace(json.find(R"("scene": 0,)"), 11,
+               R"("scene": 0, "images": [{"uri": "tex/skin.png"}, {"uri": "data:image/png;base64,)" +
+                   base64_for_test(kPng) + R"("}],)");
+  fs::create_directories(dir / "in" / "tex");
+  fs::create_directories(dir / "out");
+  write_file_atomic((dir / "in" / "square.bin").string(),
+                    std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  write_file_atomic((dir / "in" / "tex" / "skin.png").string(),
+                    std::string_view(reinterpret_cast<const char*>(kPng.data()), kPng.size()));
+  const std::string in = write_text(dir / "in" / "square.gltf", json);
+  SKINSLIDE_EXPECT_VALID_GLTF(std::vector<std::string>{in});
+  const std::string out = (dir / "out" / "frame.gltf").string();
+  write_gltf_file(read_gltf_file(in, {}), SlidVertices{}, out);
+  EXPECT_EQ(read_file((dir / "out" / "frame.bin").string()), read_file((dir / "in" / "square.bin").string()));
+  const MeshFile g = read_gltf_file(out, {});
+  ASSERT_EQ(g.gltf->model.images.size(), 2u);
+  EXPECT_EQ(g.gltf->model.images[0].uri, "../in/tex/skin.png");
+  EXPECT_EQ(g.gltf->model.images[1].image, kPng);  // the data URI's bytes, not re-encoded
+  SKINSLIDE_EXPECT_VALID_GLTF(std::vector<std::string>{out});
+  // And as GLB: buffer 0 becomes the BIN chunk, the images keep their URIs.
+  const std::string glb = (dir / "out" / "frame.glb").string();
+  write_gltf_file(read_gltf_file(in, {}), SlidVertices{}, glb);
+  EXPECT_EQ(read_gltf_file(glb, {}).gltf->model.images[0].uri, "../in/tex/skin.png");
+  SKINSLIDE_EXPECT_VALID_GLTF(std::vector<std::string>{glb});
 }
 
 }  // namespace
