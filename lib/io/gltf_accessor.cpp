@@ -115,6 +115,9 @@ const unsigned char* view_data(const tinygltf::Model& model, int view, const std
   return data.data() + bv.byteOffset;
 }
 
+// 2^26 elements: 1.5 GB of decoded VEC3 doubles.
+constexpr std::size_t kMaxElementsWithoutView = std::size_t{1} << 26;
+
 }  // namespace
 
 int gltf_component_count(int type) {
@@ -150,6 +153,30 @@ std::vector<double> gltf_accessor_values(const tinygltf::Model& model, int index
                     std::to_string(acc.componentType));
   const std::size_t n = acc.count;
   const int nc = layout.components;
+  // Every bound is checked before anything is allocated: a count read from the file must not
+  // decide how much memory is taken (a few bytes of JSON could ask for 100 GB).
+  const unsigned char* base = nullptr;
+  std::size_t stride = 0;
+  if (acc.bufferView >= 0) {
+    std::size_t length = 0;
+    base = view_data(model, acc.bufferView, where, "its", &length);
+    const std::size_t view_stride = model.bufferViews[acc.bufferView].byteStride;
+    stride = view_stride ? view_stride : static_cast<std::size_t>(layout.size);
+    if (view_stride && view_stride < static_cast<std::size_t>(layout.size))
+      fail(where, "byteStride " + std::to_string(view_stride) + " is smaller than an element (" +
+                      std::to_string(layout.size) + " bytes)");
+    if (n > 0 && (acc.byteOffset > length || (n - 1) > (length - acc.byteOffset) / stride ||
+                  (n - 1) * stride + layout.size > length - acc.byteOffset))
+      fail(where, std::to_string(n) + " elements from byte " + std::to_string(acc.byteOffset) +
+                      " run past the end of buffer view " + std::to_string(acc.bufferView) + " (" +
+                      std::to_string(length) + " bytes)");
+  } else if (n > kMaxElementsWithoutView) {
+    // Without a buffer view the elements are zeros (then sparse values): nothing in the file
+    // bounds the count, so skinslide does.
+    fail(where, "has " + std::to_string(n) +
+                    " elements and no buffer view; skinslide reads at most " +
+                    std::to_string(kMaxElementsWithoutView) + " elements without one");
+  }
   std::vector<double> out(n * nc, 0.0);
 
   auto read_element = [&](const unsigned char* p, double* dst) {
@@ -160,18 +187,7 @@ std::vector<double> gltf_accessor_values(const tinygltf::Model& model, int index
     }
   };
 
-  if (acc.bufferView >= 0) {
-    std::size_t length = 0;
-    const unsigned char* base = view_data(model, acc.bufferView, where, "its", &length);
-    const std::size_t view_stride = model.bufferViews[acc.bufferView].byteStride;
-    const std::size_t stride = view_stride ? view_stride : static_cast<std::size_t>(layout.size);
-    if (view_stride && view_stride < static_cast<std::size_t>(layout.size))
-      fail(where, "byteStride " + std::to_string(view_stride) + " is smaller than an element (" +
-                      std::to_string(layout.size) + " bytes)");
-    if (n > 0 && (acc.byteOffset > length || (n - 1) * stride + layout.size > length - acc.byteOffset))
-      fail(where, std::to_string(n) + " elements from byte " + std::to_string(acc.byteOffset) +
-                      " run past the end of buffer view " + std::to_string(acc.bufferView) +
-                      " (" + std::to_string(length) + " bytes)");
+  if (base) {
     for (std::size_t i = 0; i < n; ++i)
       read_element(base + acc.byteOffset + i * stride, out.data() + i * nc);
   }

@@ -201,6 +201,8 @@ gltf_variant u32pos.gltf 's|"bufferView":0,"componentType":5126|"bufferView":0,"
 expect gltf_position_wrong_component_type 3 "u32pos.gltf: mesh 0 primitive 0: POSITION accessor 0: has component type 5125; positions are float (5126)" --patch $P --animation 0 "$tmp/u32pos.gltf"
 gltf_variant floatidx.gltf 's|"componentType":5123,"count":6|"componentType":5126,"count":6|'
 expect gltf_float_indices 3 "floatidx.gltf: mesh 0 primitive 0: indices accessor 1: must be SCALAR unsigned byte/short/int" --patch $P --animation 0 "$tmp/floatidx.gltf"
+gltf_variant count.gltf 's|"count":4,"type":"VEC3"|"count":4294967295,"type":"VEC3"|'
+expect gltf_accessor_count_huge 3 "count.gltf: mesh 0 primitive 0: POSITION accessor 0: 4294967295 elements from byte 0 run past the end of buffer view 0 (48 bytes)" --patch $P --animation 0 "$tmp/count.gltf"
 head -c 300 $G >"$tmp/cut.gltf"
 expect gltf_truncated_json 3 "cut.gltf: not a readable glTF 2.0 file: [json.exception.parse_error.101] parse error at line 1, column 301" --patch $P --animation 0 "$tmp/cut.gltf"
 printf 'glTF\x02\x00\x00\x00\xff\xff\x00\x00JSON' >"$tmp/cut.glb"
