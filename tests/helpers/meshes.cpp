@@ -1,8 +1,11 @@
 #include "helpers/meshes.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 namespace skinslide::test {
 
@@ -45,7 +48,9 @@ std::vector<Index> all_faces(const PolyMesh& mesh) {
 
 std::string temp_dir(const std::string& name) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("skinslide_test_" + name);
+  // The process id keeps two test runs on one machine out of each other's folders.
+  const fs::path dir =
+      fs::temp_directory_path() / ("skinslide_test_" + name + "." + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 namespace skinslide::testing {
@@ -15,10 +17,12 @@ inline std::string shared_gltf(const std::string& name) {
   return std::string(SKINSLIDE_SHARED_DIR) + "/data/gltf/" + name;
 }
 
-/// A fresh, empty folder under the system's temp folder, named after the running test.
+/// A fresh, empty folder under the system's temp folder, named after the running test and the
+/// process (two test runs on one machine must not share, and delete, each other's files).
 inline std::filesystem::path temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  auto dir = std::filesystem::temp_directory_path() / "skinslide_tests" /
+  auto dir = std::filesystem::temp_directory_path() /
+             ("skinslide_tests." + std::to_string(::getpid())) /
              (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
