@@ -39,6 +39,7 @@ struct CliOptions {
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
+  std::string frame_solver = "cholesky";
   double cg_tolerance = 1e-12;
   int cg_max_iterations = 2000;
   int lookup_size = 1024;
@@ -88,7 +89,8 @@ void make_output_dir(const std::string& dir) {
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw Error(ErrorKind::Output, dir + ": cannot write: exists and is not a folder");
   fs::create_directories(dir, ec);
-  if (ec) throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
+  if (ec)
+    throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
 }
 
 SlideOptions slide_options(const CliOptions& o) {
@@ -96,6 +98,7 @@ SlideOptions slide_options(const CliOptions& o) {
   s.density = parse_density(o.density);
   s.holes = parse_holes(o.holes);
   s.q_floor = o.q_floor;
+  s.frame_solver = parse_frame_solver(o.frame_solver);
   s.cg_tolerance = o.cg_tolerance;
   s.cg_max_iterations = o.cg_max_iterations;
   s.lookup_size = o.lookup_size;
@@ -105,14 +108,16 @@ SlideOptions slide_options(const CliOptions& o) {
 struct FrameSummary {
   int cg_iterations = 0;
   int direct_solves = 0;
+  bool cholesky = false;
   int fallbacks = 0;
   int net_flips = 0;
   double max_slide = 0;
   size_t moved = 0;
 };
 
-FrameSummary summarise(const FrameResult& r) {
+FrameSummary summarise(const BindSetup& setup, const FrameResult& r) {
   FrameSummary s;
+  s.cholesky = setup.options.frame_solver == FrameSolver::Cholesky;
   for (const PatchFrameReport& p : r.patches) {
     s.cg_iterations = std::max(s.cg_iterations, p.cg_iterations);
     s.direct_solves += p.direct_solve;
@@ -125,8 +130,9 @@ FrameSummary summarise(const FrameResult& r) {
 }
 
 // Reads, checks, slides and writes one frame; returns the log lines for it.
-std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind, const CliOptions& o,
-                                   const std::string& frame_path, const std::string& out_path) {
+std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
+                                   const CliOptions& o, const std::string& frame_path,
+                                   const std::string& out_path) {
   const MeshFile frame = read_mesh_file(frame_path);
   require_same_topology(bind, frame);
   FrameResult result;
@@ -136,31 +142,35 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
     throw Error(e.kind(), frame_path + ": " + e.what());
   }
   write_slid_mesh_file(frame, result.slid, out_path);
-  const FrameSummary s = summarise(result);
+  const FrameSummary s = summarise(setup, result);
   std::vector<std::string> lines;
-  lines.push_back("skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
-                  " patches, CG " + std::to_string(s.cg_iterations) + " it, max slide " +
-                  fmt(s.max_slide) + ", " + std::to_string(s.fallbacks) + " fallbacks -> " + out_path);
+  lines.push_back(
+      "skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) + " patches, " +
+      (s.cholesky ? std::string("Cholesky") : "CG " + std::to_string(s.cg_iterations) + " it") +
+      ", max slide " + fmt(s.max_slide) + ", " + std::to_string(s.fallbacks) + " fallbacks -> " +
+      out_path);
   if (o.verbose)
     for (size_t p = 0; p < result.patches.size(); ++p) {
       const PatchFrameReport& r = result.patches[p];
       lines.push_back("  patch " + std::to_string(p) + ": " +
-                      (setup.patches[p].skipped ? std::string("skipped (all vertices on loops)")
-                                                : "CG " + std::to_string(r.cg_iterations) +
-                                                      " it, residual " + fmt(r.cg_residual) +
-                                                      (r.direct_solve ? " (solved directly)" : "") +
-                                                      ", located " + std::to_string(r.located_in_image) +
-                                                      " + " + std::to_string(r.located_fallback) +
-                                                      " fallback, net flips " + std::to_string(r.frame_net_flips) +
-                                                      ", slide max " + fmt(r.max_slide) + " mean " +
-                                                      fmt(r.mean_slide)));
+                      (setup.patches[p].skipped
+                           ? std::string("skipped (all vertices on loops)")
+                           : (s.cholesky ? std::string("Cholesky")
+                                         : "CG " + std::to_string(r.cg_iterations) +
+                                               " it, residual " + fmt(r.cg_residual) +
+                                               (r.direct_solve ? " (solved directly)" : "")) +
+                                 ", located " + std::to_string(r.located_in_image) + " + " +
+                                 std::to_string(r.located_fallback) + " fallback, net flips " +
+                                 std::to_string(r.frame_net_flips) + ", slide max " +
+                                 fmt(r.max_slide) + " mean " + fmt(r.mean_slide)));
     }
   return lines;
 }
 
 int run(const CliOptions& o) {
   const cli::Verbosity verbosity =
-      o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
+      o.quiet ? cli::Verbosity::Quiet
+              : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
   const SlideOptions options = slide_options(o);
   const std::vector<std::string> outputs = output_paths(o);
 
@@ -174,15 +184,18 @@ int run(const CliOptions& o) {
   size_t sliding = 0;
   for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
   if (verbosity != cli::Verbosity::Quiet)
-    std::fprintf(stderr, "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
+    std::fprintf(stderr,
+                 "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
                  o.bind.c_str(), setup.patches.size(), sliding, to_string(options.density).c_str(),
                  to_string(options.holes).c_str());
   if (verbosity == cli::Verbosity::Verbose)
     for (size_t p = 0; p < setup.patches.size(); ++p) {
       const PatchNet& n = setup.patches[p];
-      std::fprintf(stderr, "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n",
-                   p, n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
-                   n.skipped ? " (skipped)" : "", n.bind_net_flips);
+      std::fprintf(
+          stderr,
+          "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n", p,
+          n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
+          n.skipped ? " (skipped)" : "", n.bind_net_flips);
     }
   make_output_dir(o.output);
 
@@ -223,14 +236,17 @@ int run(const CliOptions& o) {
 int main(int argc, char** argv) {
   std::setlocale(LC_ALL, "C");
   CliOptions o;
-  CLI::App app{
-      "skinslide " + std::string(version()) +
-      ": skin sliding for deformed character meshes (Yang & Zhang 2010, force-density bar nets).\n"
-      "Flattens each patch of the bind mesh and of every frame onto the unit square and moves the\n"
-      "frame's patch vertices back to where the bind's flattening puts them, on the frame's surface.\n"
-      "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, `12-40`,\n"
-      "`pBody.f[12:40]`; whitespace or commas between them, `#` comments.",
-      "skinslide"};
+  CLI::App app{"skinslide " + std::string(version()) +
+                   ": skin sliding for deformed character meshes (Yang & Zhang 2010, force-density "
+                   "bar nets).\n"
+                   "Flattens each patch of the bind mesh and of every frame onto the unit square "
+                   "and moves the\n"
+                   "frame's patch vertices back to where the bind's flattening puts them, on the "
+                   "frame's surface.\n"
+                   "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): "
+                   "`12`, `12-40`,\n"
+                   "`pBody.f[12:40]`; whitespace or commas between them, `#` comments.",
+               "skinslide"};
   app.set_version_flag("--version", std::string("skinslide ") + version());
   app.get_formatter()->column_width(36);
 
@@ -253,9 +269,10 @@ int main(int argc, char** argv) {
       ->group(out);
 
   auto* method = "Method";
-  app.add_option("--density", o.density,
-                 "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
-                 "= Lmin/L, uniform = 1")
+  app.add_option(
+         "--density", o.density,
+         "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
+         "= Lmin/L, uniform = 1")
       ->capture_default_str()
       ->check(CLI::IsMember({"paper", "inverse", "length", "uniform"}))
       ->group(method);
@@ -268,6 +285,13 @@ int main(int argc, char** argv) {
   app.add_option("--q-floor", o.q_floor, "Smallest force density (paper, inverse)")
       ->capture_default_str()
       ->check(CLI::Range(1e-12, 1.0))
+      ->group(method);
+  app.add_option(
+         "--frame-solver", o.frame_solver,
+         "Frame nets: cholesky (sparse, analysis reused by every frame) or cg (warm-started "
+         "conjugate gradient; the same nets within --cg-tolerance)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cholesky", "cg"}))
       ->group(method);
   app.add_option("--cg-tolerance", o.cg_tolerance, "Frame net CG stops at |r| <= tol |b|")
       ->capture_default_str()

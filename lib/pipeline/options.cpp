@@ -17,6 +17,12 @@ Holes parse_holes(const std::string& name) {
   throw Error(ErrorKind::Usage, "unknown hole mode '" + name + "' (free, fill)");
 }
 
+FrameSolver parse_frame_solver(const std::string& name) {
+  if (name == "cholesky") return FrameSolver::Cholesky;
+  if (name == "cg") return FrameSolver::Cg;
+  throw Error(ErrorKind::Usage, "unknown frame solver '" + name + "' (cholesky, cg)");
+}
+
 std::string to_string(Density d) {
   switch (d) {
     case Density::Paper:
@@ -30,5 +36,7 @@ std::string to_string(Density d) {
 }
 
 std::string to_string(Holes h) { return h == Holes::Free ? "free" : "fill"; }
+
+std::string to_string(FrameSolver s) { return s == FrameSolver::Cg ? "cg" : "cholesky"; }
 
 }  // namespace skinslide

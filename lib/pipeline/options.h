@@ -18,18 +18,27 @@ enum class Holes {
   Fill,  ///< each hole gets a virtual free node joined to every loop vertex
 };
 
+/// How each frame net is solved (same result within the CG tolerance).
+enum class FrameSolver {
+  Cholesky,  ///< sparse Cholesky, ordering and symbolic analysis reused by every frame
+  Cg,        ///< conjugate gradient (Jacobi), warm-started at the bind net
+};
+
 struct SlideOptions {
   Density density = Density::Inverse;
   Holes holes = Holes::Fill;
-  double q_floor = 1e-3;         ///< lower bound of q (Paper, Inverse)
+  double q_floor = 1e-3;  ///< lower bound of q (Paper, Inverse)
+  FrameSolver frame_solver = FrameSolver::Cholesky;
   double cg_tolerance = 1e-12;   ///< CG stops at |r| <= tol * |b| (Eigen's criterion)
   int cg_max_iterations = 2000;  ///< past it the frame net is solved directly (counted)
   int lookup_size = 1024;        ///< ID image side in pixels
 };
 
-Density parse_density(const std::string& name);  ///< throws Usage on an unknown name
-Holes parse_holes(const std::string& name);      ///< throws Usage on an unknown name
+Density parse_density(const std::string& name);           ///< throws Usage on an unknown name
+Holes parse_holes(const std::string& name);               ///< throws Usage on an unknown name
+FrameSolver parse_frame_solver(const std::string& name);  ///< throws Usage on an unknown name
 std::string to_string(Density d);
 std::string to_string(Holes h);
+std::string to_string(FrameSolver s);
 
 }  // namespace skinslide

@@ -7,6 +7,7 @@
 #include "locate/id_raster.h"
 #include "pipeline/bind_setup.h"
 #include "slide/transfer.h"
+#include "unwrap/bar_net.h"
 
 namespace skinslide {
 
@@ -29,9 +30,13 @@ struct FrameResult {
   std::vector<PatchFrameReport> patches;  ///< parallel to BindSetup::patches
 };
 
+/// The frame-net solver settings of `options` (method, CG tolerance and iteration cap).
+FrameNetOptions frame_net_options(const SlideOptions& options);
+
 /// Slides one frame. `frame` holds the deformed positions of every mesh vertex (#V).
 /// Pure: the result depends only on (setup, frame).
 /// \throw Error(Numeric) when a solve fails or a result is not finite.
-FrameResult slide_frame(const BindSetup& setup, const Positions3& frame, bool keep_id_image = false);
+FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
+                        bool keep_id_image = false);
 
 }  // namespace skinslide
