@@ -46,6 +46,7 @@ struct CliOptions {
   unsigned threads = 0;
   bool quiet = false;
   bool verbose = false;
+  bool no_slide = false;
 };
 
 std::string fmt(double x) {
@@ -135,6 +136,10 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
                                    const std::string& out_path) {
   const MeshFile frame = read_mesh_file(frame_path);
   require_same_topology(bind, frame);
+  if (o.no_slide) {
+    write_slid_mesh_file(frame, SlidVertices{}, out_path);
+    return {"skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path};
+  }
   FrameResult result;
   try {
     result = slide_frame(setup, frame.mesh.positions);
@@ -178,12 +183,18 @@ int run(const CliOptions& o) {
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
-  const BindSetup setup = bind_setup(bind.mesh, selections, options, [&](Index f) {
-    return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
-  });
+  // --no-slide measures the I/O floor of a run: no bind set-up, frames copied unchanged.
+  const BindSetup setup =
+      o.no_slide ? BindSetup{} : bind_setup(bind.mesh, selections, options, [&](Index f) {
+        return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
+      });
   size_t sliding = 0;
   for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
-  if (verbosity != cli::Verbosity::Quiet)
+  if (o.no_slide && verbosity != cli::Verbosity::Quiet)
+    std::fprintf(stderr,
+                 "skinslide: %s: --no-slide: frames are read, checked and written unchanged\n",
+                 o.bind.c_str());
+  else if (verbosity != cli::Verbosity::Quiet)
     std::fprintf(stderr,
                  "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
                  o.bind.c_str(), setup.patches.size(), sliding, to_string(options.density).c_str(),
@@ -226,8 +237,8 @@ int run(const CliOptions& o) {
   for (const auto& e : errors)
     if (e) throw *e;  // the first bad frame in list order
   if (verbosity != cli::Verbosity::Quiet)
-    std::fprintf(stderr, "skinslide: %zu frames slid in %.2f s -> %s\n", count,
-                 progress.elapsed_seconds(), o.output.c_str());
+    std::fprintf(stderr, "skinslide: %zu frames %s in %.2f s -> %s\n", count,
+                 o.no_slide ? "copied" : "slid", progress.elapsed_seconds(), o.output.c_str());
   return 0;
 }
 
@@ -311,6 +322,10 @@ int main(int argc, char** argv) {
   app.add_option("-j,--threads", o.threads, "Frames processed at once; 0 = all cores")
       ->capture_default_str()
       ->check(CLI::Range(0u, 1024u))
+      ->group(run_group);
+  app.add_flag("--no-slide", o.no_slide,
+               "Read, check and write every frame unchanged, without sliding: the I/O floor of a "
+               "run, for timing")
       ->group(run_group);
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run_group);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run_group);

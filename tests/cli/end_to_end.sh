@@ -65,6 +65,15 @@ cp data/face/bind.obj "$tmp/identity.obj"
 "$bin" -q --patch data/face/patch.txt data/face/bind.obj "$tmp/identity.obj" -o "$tmp/identity"
 check "an identity frame is written unchanged" cmp data/face/bind.obj "$tmp/identity/identity.obj"
 
+# --no-slide (the I/O floor): every frame written byte for byte; --frame-solver cg: the same nets.
+"$bin" -q --no-slide --patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/noslide"
+check "--no-slide writes every frame unchanged" diff -r data/elbow/frames "$tmp/noslide"
+"$bin" -q --frame-solver cg --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.cg"
+for out in "$tmp"/face.cg/*.obj; do
+  check "--frame-solver cg: $(basename "$out") matches its golden file" \
+    /usr/bin/python3 "$here/compare_obj.py" "$here/golden/face/$(basename "$out")" "$out"
+done
+
 # Only v lines change: every other line of a slid frame is the frame's own.
 check "only v lines differ from the frame" bash -c \
   "diff <(grep -v '^v ' data/elbow/frames/elbow.0003.obj) <(grep -v '^v ' '$tmp/elbow.t1/elbow.0003.obj')"
