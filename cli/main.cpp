@@ -42,6 +42,7 @@ struct CliOptions {
   std::string frame_solver = "cholesky";
   double cg_tolerance = 1e-12;
   int cg_max_iterations = 2000;
+  std::string locate = "walk";
   int lookup_size = 1024;
   unsigned threads = 0;
   bool quiet = false;
@@ -102,6 +103,7 @@ SlideOptions slide_options(const CliOptions& o) {
   s.frame_solver = parse_frame_solver(o.frame_solver);
   s.cg_tolerance = o.cg_tolerance;
   s.cg_max_iterations = o.cg_max_iterations;
+  s.locate = parse_locate(o.locate);
   s.lookup_size = o.lookup_size;
   return s;
 }
@@ -312,6 +314,12 @@ int main(int argc, char** argv) {
                  "Past this the frame net is solved directly (counted)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000))
+      ->group(method);
+  app.add_option("--locate", o.locate,
+                 "Finding bind positions in frame nets: walk (from each vertex's own triangles) or "
+                 "image (a triangle-ID image, --lookup-size)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"walk", "image"}))
       ->group(method);
   app.add_option("--lookup-size", o.lookup_size, "Side of the triangle-ID lookup image, pixels")
       ->capture_default_str()

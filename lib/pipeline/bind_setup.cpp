@@ -38,7 +38,7 @@ Index bar_index(const std::vector<std::array<Index, 2>>& bars, Index a, Index b)
 // each hole gets a virtual free node joined to its loop vertices, with the loop's mean q, so the
 // hole keeps its size instead of collapsing towards the free loop.
 Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const Positions2& outer_2d,
-                    Holes holes) {
+                    Holes holes, std::vector<Index>& node_order) {
   const Index n = static_cast<Index>(patch.vertices.size());
   BarNet net;
   net.node_count = n;
@@ -66,7 +66,7 @@ Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const P
     net.fixed[outer[k]] = 1;
     start[outer[k]] = outer_2d[k];
   }
-  Positions2 solved = solve_bar_net(net, q_all, start);
+  Positions2 solved = solve_bar_net(net, q_all, start, &node_order);
   solved.resize(n);
   return solved;
 }
@@ -118,13 +118,16 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
     if (!on_loop[v]) patch.free_vertices.push_back(v);
   patch.skipped = patch.free_vertices.empty();
   if (patch.skipped) return patch;  // nothing to move: no unwrap needed, whatever the loops
+  patch.topology = triangle_topology(patch.triangles, static_cast<Index>(patch.vertices.size()));
 
   const auto& outer = patch.loops[patch.outer_loop];
   const SquareBoundary square = square_positions(gather(points, outer));
   for (int j = 0; j < 4; ++j) patch.corners[j] = outer[square.corners[j]];
   const std::vector<double> q =
       force_densities(bar_lengths(points, patch.bars), options.density, options.q_floor);
-  patch.bind_net = bind_net(patch, q, square.positions, options.holes);
+  // The frame nets' free nodes are among the bind net's: its fill-reducing order serves them too.
+  std::vector<Index> node_order;
+  patch.bind_net = bind_net(patch, q, square.positions, options.holes, node_order);
   patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
 
   // Frame nets: the same bars, every loop vertex fixed at its bind-net position.
@@ -132,7 +135,8 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   frame.node_count = static_cast<Index>(patch.vertices.size());
   frame.bars = patch.bars;
   frame.fixed = on_loop;
-  patch.solver = std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net);
+  patch.solver =
+      std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net, node_order);
   return patch;
 }
 

@@ -23,6 +23,12 @@ FrameSolver parse_frame_solver(const std::string& name) {
   throw Error(ErrorKind::Usage, "unknown frame solver '" + name + "' (cholesky, cg)");
 }
 
+Locate parse_locate(const std::string& name) {
+  if (name == "walk") return Locate::Walk;
+  if (name == "image") return Locate::Image;
+  throw Error(ErrorKind::Usage, "unknown locate method '" + name + "' (walk, image)");
+}
+
 std::string to_string(Density d) {
   switch (d) {
     case Density::Paper:
@@ -39,4 +45,8 @@ std::string to_string(Holes h) { return h == Holes::Free ? "free" : "fill"; }
 
 std::string to_string(FrameSolver s) { return s == FrameSolver::Cg ? "cg" : "cholesky"; }
 
+}  // namespace skinslide
+
+namespace skinslide {
+std::string to_string(Locate l) { return l == Locate::Image ? "image" : "walk"; }
 }  // namespace skinslide

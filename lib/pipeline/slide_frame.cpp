@@ -35,11 +35,17 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   report.frame_net = std::move(net.positions);
   report.frame_net_flips = flipped_triangles(report.frame_net, patch.triangles);
 
-  IdImage image = id_raster(report.frame_net, patch.triangles, opt.lookup_size);
+  IdImage image;
+  if (opt.locate == Locate::Image || keep_id_image)
+    image = id_raster(report.frame_net, patch.triangles, opt.lookup_size);
   Positions2 targets(patch.free_vertices.size());
   for (size_t k = 0; k < targets.size(); ++k) targets[k] = patch.bind_net[patch.free_vertices[k]];
+  // Each target is the bind-net position of a free vertex: the walk starts at that vertex.
   const std::vector<Location> where =
-      locate_points(targets, report.frame_net, patch.triangles, image);
+      opt.locate == Locate::Image
+          ? locate_points(targets, report.frame_net, patch.triangles, image)
+          : locate_points_by_walk(targets, patch.free_vertices, report.frame_net, patch.triangles,
+                                  patch.topology, report.frame_net_flips > 0);
 
   double total = 0;
   for (size_t k = 0; k < where.size(); ++k) {

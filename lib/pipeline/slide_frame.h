@@ -1,4 +1,4 @@
-// One frame: frame net (warm-started CG), ID image, point location, transfer.
+// One frame: frame net, point location (a walk or an ID image), transfer.
 #pragma once
 
 #include <vector>
@@ -16,7 +16,7 @@ struct PatchFrameReport {
   int cg_iterations = 0;      ///< CG iterations (the larger of the x and y solves)
   double cg_residual = 0;     ///< final |r|/|b|
   bool direct_solve = false;  ///< CG did not converge; the net was solved directly
-  int located_in_image = 0;   ///< vertices found through the ID image
+  int located_in_image = 0;   ///< vertices found through the ID image or the walk
   int located_fallback = 0;   ///< vertices found by the nearest-triangle fallback
   int frame_net_flips = 0;    ///< frame-net triangles of the minority orientation
   double max_slide = 0;       ///< largest |slid - frame| (frame units)

@@ -17,14 +17,17 @@ struct BarNet {
   std::vector<char> fixed;  ///< #nodes; 1 = fixed
 };
 
-/// Equilibrium of the net by a direct sparse solve (Eigen SimplicialLDLT, x and y together).
+/// Equilibrium of the net by a direct sparse solve (CHOLMOD LDL^T with a METIS ordering, x and
+/// y together).
 /// \param q one force density per bar (> 0)
 /// \param positions #nodes; the entries of fixed nodes are used, the others ignored
+/// \param node_order if given, receives the free nodes in the factorisation's fill-reducing
+///        order, for a FrameNetSolver on a net whose free nodes are among these
 /// \return #nodes positions: fixed nodes as given, free nodes in equilibrium
 /// \throw Error(Numeric) when the system is singular (a free node with no path to a fixed one)
 ///        or the result is not finite.
 Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q,
-                         const Positions2& positions);
+                         const Positions2& positions, std::vector<Index>* node_order = nullptr);
 
 /// How FrameNetSolver solves a frame.
 enum class FrameNetMethod {
@@ -54,8 +57,10 @@ struct FrameNetSolution {
 class FrameNetSolver {
  public:
   /// \param positions #nodes: fixed nodes at their positions, free nodes at the warm start
+  /// \param node_order a fill-reducing order of (a superset of) the free nodes, e.g. from
+  ///        solve_bar_net on the bind net; other nodes in it are skipped. Empty: METIS's own.
   /// \throw Error(Numeric) when the symbolic analysis fails.
-  FrameNetSolver(BarNet net, Positions2 positions);
+  FrameNetSolver(BarNet net, Positions2 positions, const std::vector<Index>& node_order = {});
   /// \param q one force density per bar (> 0)
   /// \return #nodes positions: fixed nodes as given, free nodes in equilibrium
   /// \throw Error(Numeric) when the system is singular or the result is not finite.

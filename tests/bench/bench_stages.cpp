@@ -1,7 +1,7 @@
 // Per-stage timings of skinslide's pipeline, calling the library stages directly, and the I/O
 // floor (frames read and written unchanged by the same reader and writer).
 //
-//   skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] -o DIR BIND PATCH FRAME...
+//   skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] [-l walk|image] -o DIR BIND PATCH FRAME...
 //       bind read and set-up, then per frame: read (+ topology check), frame net (force
 //       densities + solve, with CG iterations), ID image, locate, transfer, write; plus
 //       slide_frame as a whole. Prints "name median_ms" lines (medians over frames x repeats).
@@ -74,13 +74,21 @@ void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3&
   s.add("frame_net", ms_since(t0));
   s.add("cg_iterations", net.iterations);
   s.add("direct_solves", net.direct ? 1 : 0);
-  t0 = Clock::now();
-  const IdImage image = id_raster(net.positions, patch.triangles, opt.lookup_size);
-  s.add("id_image", ms_since(t0));
-  t0 = Clock::now();
   Positions2 targets(patch.free_vertices.size());
   for (size_t k = 0; k < targets.size(); ++k) targets[k] = patch.bind_net[patch.free_vertices[k]];
-  const std::vector<Location> where = locate_points(targets, net.positions, patch.triangles, image);
+  std::vector<Location> where;
+  if (opt.locate == Locate::Image) {
+    t0 = Clock::now();
+    const IdImage image = id_raster(net.positions, patch.triangles, opt.lookup_size);
+    s.add("id_image", ms_since(t0));
+    t0 = Clock::now();
+    where = locate_points(targets, net.positions, patch.triangles, image);
+  } else {
+    const bool folded = flipped_triangles(net.positions, patch.triangles) > 0;
+    t0 = Clock::now();
+    where = locate_points_by_walk(targets, patch.free_vertices, net.positions, patch.triangles,
+                                  patch.topology, folded);
+  }
   s.add("locate", ms_since(t0));
   size_t fallbacks = 0;
   for (const Location& l : where) fallbacks += l.fallback;
@@ -173,6 +181,8 @@ int main(int argc, char** argv) {
       repeat = std::max(1, std::atoi(argv[++i]));
     else if (a == "-j" && i + 1 < argc)
       threads = static_cast<unsigned>(std::atoi(argv[++i]));
+    else if (a == "-l" && i + 1 < argc)
+      options.locate = parse_locate(argv[++i]);
     else if (a == "-s" && i + 1 < argc)
       options.frame_solver = parse_frame_solver(argv[++i]);
     else if (a == "-o" && i + 1 < argc)
@@ -181,10 +191,10 @@ int main(int argc, char** argv) {
       args.push_back(a);
   }
   if (out_dir.empty() || args.size() < (floor ? 2u : 3u)) {
-    std::fprintf(
-        stderr,
-        "usage: skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] -o DIR BIND PATCH FRAME...\n"
-        "       skinslide_bench_stages --floor [-j THREADS] -o DIR BIND FRAME...\n");
+    std::fprintf(stderr,
+                 "usage: skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] [-l walk|image] -o "
+                 "DIR BIND PATCH FRAME...\n"
+                 "       skinslide_bench_stages --floor [-j THREADS] -o DIR BIND FRAME...\n");
     return 2;
   }
   try {

@@ -65,10 +65,16 @@ cp data/face/bind.obj "$tmp/identity.obj"
 "$bin" -q --patch data/face/patch.txt data/face/bind.obj "$tmp/identity.obj" -o "$tmp/identity"
 check "an identity frame is written unchanged" cmp data/face/bind.obj "$tmp/identity/identity.obj"
 
-# --no-slide (the I/O floor): every frame written byte for byte; --frame-solver cg: the same nets.
+# --no-slide (the I/O floor): every frame written byte for byte; --frame-solver cg and
+# --locate image: the same results.
 "$bin" -q --no-slide --patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/noslide"
 check "--no-slide writes every frame unchanged" diff -r data/elbow/frames "$tmp/noslide"
 "$bin" -q --frame-solver cg --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.cg"
+"$bin" -q --locate image --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.image"
+for out in "$tmp"/face.image/*.obj; do
+  check "--locate image: $(basename "$out") matches its golden file" \
+    /usr/bin/python3 "$here/compare_obj.py" "$here/golden/face/$(basename "$out")" "$out"
+done
 for out in "$tmp"/face.cg/*.obj; do
   check "--frame-solver cg: $(basename "$out") matches its golden file" \
     /usr/bin/python3 "$here/compare_obj.py" "$here/golden/face/$(basename "$out")" "$out"
