@@ -230,6 +230,16 @@ void record_frame(ReportFrame& record, const std::string& source, const std::str
   }
 }
 
+// slide_frame, with the frame named in its errors.
+FrameResult slide_named(const BindSetup& setup, const CliOptions& o, const Positions3& positions,
+                        const std::string& name) {
+  try {
+    return slide_frame(setup, positions, /*keep_id_image=*/!o.dump_dir.empty());
+  } catch (const Error& e) {
+    throw Error(e.kind(), name + ": " + e.what());
+  }
+}
+
 // A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
 // so the slid frame appears only once everything of its frame is written.
 void write_frame_pictures(const BindSetup& setup, const CliOptions& o, const std::string& named_after,
@@ -250,12 +260,7 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
   const MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
   const double read_seconds = seconds_since(t0);
-  FrameResult result;
-  try {
-    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
-  } catch (const Error& e) {
-    throw Error(e.kind(), frame_path + ": " + e.what());
-  }
+  const FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
   write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
   t0 = std::chrono::steady_clock::now();
   write_slid_mesh_file(frame, result.slid, out_path);
@@ -271,12 +276,7 @@ std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& c
   auto t0 = std::chrono::steady_clock::now();
   const MeshFile frame = rig_frame(character, clip, k);
   const double pose_seconds = seconds_since(t0);
-  FrameResult result;
-  try {
-    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
-  } catch (const Error& e) {
-    throw Error(e.kind(), label + ": " + e.what());
-  }
+  const FrameResult result = slide_named(setup, o, frame.mesh.positions, label);
   write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
   t0 = std::chrono::steady_clock::now();
   if (o.format == "obj")

@@ -4,27 +4,10 @@
 # usage errors of the glTF options (exit code 2, nothing written).
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/gltf_end_to_end.sh
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+source "$(dirname "$0")/harness.sh"
 shared=${SKINSLIDE_SHARED_DIR:-$root/../shared}
 simple="$shared/data/gltf/RiggedSimple.glb"
 patch="$here/gltf/RiggedSimple_bend.txt"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-check() {  # check NAME COMMAND...
-  local name=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name" >&2
-  fi
-}
 
 expect_exit() {  # expect_exit CODE OUTDIR ARGS...: the exit code, an error line, no output folder
   local code=$1 out=$2
@@ -117,5 +100,4 @@ check "an unknown mesh is an input error" \
 check "a static (unskinned) character is an input error" \
   expect_exit 3 "$tmp/e9" --animation 0 --patch "$patch" "$tmp/rs.t1/RiggedSimple.0003.glb"
 
-echo "gltf_end_to_end: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish gltf_end_to_end
