@@ -6,10 +6,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <cctype>
+#include <chrono>
 #include <clocale>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -19,10 +23,18 @@
 
 #include "core/error.h"
 #include "core/version.h"
+#include "io/atomic_write.h"
+#include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "io/number_format.h"
+#include "io/obj_write.h"
+#include "io/obj_read.h"
 #include "io/patch_file.h"
+#include "io/vertex_list.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/dumps.h"
+#include "pipeline/rig_frames.h"
+#include "pipeline/report.h"
 #include "pipeline/slide_frame.h"
 #include "progress.h"
 
@@ -36,6 +48,9 @@ struct CliOptions {
   std::string bind;
   std::vector<std::string> frames;
   std::string output = "slid";
+  std::string dump_dir;     // --dump: EXR images of the nets; empty = none
+  std::string preview_dir;  // --preview: PNG pictures of the nets; empty = none
+  int preview_size = 1024;
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
@@ -48,7 +63,70 @@ struct CliOptions {
   bool quiet = false;
   bool verbose = false;
   bool no_slide = false;
+  std::string mesh;       // glTF: which mesh (name or index); empty = the only one
+  bool rig = false;       // --animation given: the frames are BIND posed by its skin
+  std::string animation;  // clip name or index
+  double fps = 0;         // 0 = the clip's key times
+  bool keyframes = false; // --keyframes: the default, spelled out
+  std::string format = "glb";  // of the slid rig frames: obj or glb
+  // Controls (README "Controls")
+  std::string weights;
+  std::string weights_color;
+  double strength = 1;
+  std::string pin;
+  std::vector<std::string> corners;
+  std::vector<int> outer_loop_vertices;
+  std::string report;
+  bool report_no_timings = false;
 };
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// "a,b,c,d" -> four vertex ids.
+std::array<Index, 4> parse_corners(const std::string& text) {
+  std::array<Index, 4> c{};
+  size_t pos = 0;
+  for (int j = 0; j < 4; ++j) {
+    const size_t comma = j < 3 ? text.find(',', pos) : text.size();
+    const auto id = comma == std::string::npos ? std::nullopt
+                                               : parse_integer(std::string_view(text).substr(pos, comma - pos));
+    if (!id || *id < 0 || *id > 2147483647LL || (j < 3 && comma == text.size()))
+      throw Error(ErrorKind::Usage, "--corners " + text +
+                                        ": expected four vertex ids a,b,c,d (the outer loop's "
+                                        "corners in walking order)");
+    c[j] = static_cast<Index>(*id);
+    pos = comma + 1;
+  }
+  return c;
+}
+
+// The controls read from their files (after the bind: ids are checked against it).
+SlideControls slide_controls(const CliOptions& o, const MeshFile& bind, RunReport& report) {
+  SlideControls c;
+  const Index nv = bind.mesh.vertex_count();
+  if (!o.weights.empty()) {
+    c.weight = read_weights(o.weights, nv);
+    report.weights = o.weights;
+  } else if (!o.weights_color.empty()) {
+    if (!bind.obj)
+      throw Error(ErrorKind::Usage, "--weights-from-obj-color needs an OBJ bind; " + o.bind + " is not one");
+    const int channel = o.weights_color == "r" ? 0 : o.weights_color == "g" ? 1 : 2;
+    c.weight = obj_color_weights(o.bind, *bind.obj, channel);
+    report.weights = o.bind + " (vertex colour " + o.weights_color + ")";
+  }
+  c.strength = o.strength;
+  report.strength = o.strength;
+  if (!o.pin.empty()) {
+    c.pins = read_vertex_list(o.pin, nv);
+    report.pins = o.pin;
+    report.pins_requested = static_cast<Index>(c.pins.size());
+  }
+  for (const std::string& t : o.corners) c.corners.push_back(parse_corners(t));
+  for (int v : o.outer_loop_vertices) c.outer_loop_vertices.push_back(v);
+  return c;
+}
 
 std::string fmt(double x) {
   char buf[32];
@@ -69,6 +147,8 @@ std::vector<std::string> output_paths(const CliOptions& o) {
   std::vector<std::string> inputs = o.frames;
   inputs.push_back(o.bind);
   inputs.insert(inputs.end(), o.patches.begin(), o.patches.end());
+  for (const std::string* f : {&o.weights, &o.pin})
+    if (!f->empty()) inputs.push_back(*f);
   std::vector<std::string> out;
   std::set<std::string> names;
   for (const std::string& f : o.frames) {
@@ -83,6 +163,14 @@ std::vector<std::string> output_paths(const CliOptions& o) {
                                           "; choose another --output folder");
     out.push_back(target.string());
   }
+  if (!o.report.empty()) {
+    for (const std::string& in : inputs)
+      if (same_file(o.report, in))
+        throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);
+    for (const std::string& f : out)
+      if (same_file(o.report, f))
+        throw Error(ErrorKind::Usage, "--report " + o.report + " is also the output of a frame");
+  }
   return out;
 }
 
@@ -91,8 +179,7 @@ void make_output_dir(const std::string& dir) {
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw Error(ErrorKind::Output, dir + ": cannot write: exists and is not a folder");
   fs::create_directories(dir, ec);
-  if (ec)
-    throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
+  if (ec) throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
 }
 
 SlideOptions slide_options(const CliOptions& o) {
@@ -111,16 +198,14 @@ SlideOptions slide_options(const CliOptions& o) {
 struct FrameSummary {
   int cg_iterations = 0;
   int direct_solves = 0;
-  bool cholesky = false;
   int fallbacks = 0;
   int net_flips = 0;
   double max_slide = 0;
   size_t moved = 0;
 };
 
-FrameSummary summarise(const BindSetup& setup, const FrameResult& r) {
+FrameSummary summarise(const FrameResult& r) {
   FrameSummary s;
-  s.cholesky = setup.options.frame_solver == FrameSolver::Cholesky;
   for (const PatchFrameReport& p : r.patches) {
     s.cg_iterations = std::max(s.cg_iterations, p.cg_iterations);
     s.direct_solves += p.direct_solve;
@@ -132,41 +217,108 @@ FrameSummary summarise(const BindSetup& setup, const FrameResult& r) {
   return s;
 }
 
+std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
+                                      const FrameResult& result, const std::string& frame_path,
+                                      const std::string& out_path);
+
+// The report's record of one frame: its figures, not its nets.
+void record_frame(ReportFrame& record, const std::string& source, const std::string& out_path,
+                  double read_seconds, double write_seconds, const FrameResult& result) {
+  record.path = source;
+  record.output = out_path;
+  record.read_seconds = read_seconds;
+  record.write_seconds = write_seconds;
+  record.patches = result.patches;
+  for (PatchFrameReport& r : record.patches) {
+    r.frame_net = {};
+    r.id_image = {};
+  }
+}
+
+// slide_frame, with the frame named in its errors.
+FrameResult slide_named(const BindSetup& setup, const CliOptions& o, const Positions3& positions,
+                        const std::string& name) {
+  try {
+    return slide_frame(setup, positions, /*keep_id_image=*/!o.dump_dir.empty());
+  } catch (const Error& e) {
+    throw Error(e.kind(), name + ": " + e.what());
+  }
+}
+
+// A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
+// so the slid frame appears only once everything of its frame is written.
+void write_frame_pictures(const BindSetup& setup, const CliOptions& o, const std::string& named_after,
+                          const Positions3& frame_positions, const FrameResult& result) {
+  DumpOptions dump_options;
+  dump_options.preview_size = o.preview_size;
+  if (!o.dump_dir.empty())
+    write_frame_dumps(o.dump_dir, named_after, setup, frame_positions, result.patches, dump_options);
+  if (!o.preview_dir.empty())
+    write_previews(o.preview_dir, named_after, setup, result.patches, dump_options);
+}
+
 // Reads, checks, slides and writes one frame; returns the log lines for it.
-std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
-                                   const CliOptions& o, const std::string& frame_path,
-                                   const std::string& out_path) {
-  const MeshFile frame = read_mesh_file(frame_path);
+std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind, const CliOptions& o,
+                                   const std::string& frame_path, const std::string& out_path,
+                                   ReportFrame* record) {
+  auto t0 = std::chrono::steady_clock::now();
+  const MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
+  const double read_seconds = seconds_since(t0);
   if (o.no_slide) {
     write_slid_mesh_file(frame, SlidVertices{}, out_path);
     return {"skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path};
   }
-  FrameResult result;
-  try {
-    result = slide_frame(setup, frame.mesh.positions);
-  } catch (const Error& e) {
-    throw Error(e.kind(), frame_path + ": " + e.what());
-  }
+  const FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
+  write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
+  t0 = std::chrono::steady_clock::now();
   write_slid_mesh_file(frame, result.slid, out_path);
-  const FrameSummary s = summarise(setup, result);
+  if (record) record_frame(*record, frame_path, out_path, read_seconds, seconds_since(t0), result);
+  return frame_report(setup, o, result, frame_path, out_path);
+}
+
+// Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB.
+std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& character,
+                                       const RigClip& clip, const CliOptions& o, size_t k,
+                                       const std::string& out_path, ReportFrame* record) {
+  const std::string label = clip.names[k] + " (t = " + fmt(clip.times[k]) + " s)";
+  auto t0 = std::chrono::steady_clock::now();
+  const MeshFile frame = rig_frame(character, clip, k);
+  const double pose_seconds = seconds_since(t0);
+  const FrameResult result = slide_named(setup, o, frame.mesh.positions, label);
+  write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
+  t0 = std::chrono::steady_clock::now();
+  if (o.format == "obj")
+    write_file_atomic(out_path, obj_text(frame.mesh, apply_slide(frame.mesh.positions, result.slid),
+                                         character.path + ", " + label + ", slid"));
+  else
+    write_gltf_file(frame, result.slid, out_path);
+  if (record) record_frame(*record, label, out_path, pose_seconds, seconds_since(t0), result);
+  return frame_report(setup, o, result, label, out_path);
+}
+
+std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
+                                      const FrameResult& result, const std::string& frame_path,
+                                      const std::string& out_path) {
+  const FrameSummary s = summarise(result);
   std::vector<std::string> lines;
-  lines.push_back(
-      "skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) + " patches, " +
-      (s.cholesky ? std::string("Cholesky") : "CG " + std::to_string(s.cg_iterations) + " it") +
-      ", max slide " + fmt(s.max_slide) + ", " + std::to_string(s.fallbacks) + " fallbacks -> " +
-      out_path);
+  const bool cholesky = setup.options.frame_solver == FrameSolver::Cholesky;
+  const auto solver = [&](int iterations) {
+    return cholesky ? std::string("Cholesky") : "CG " + std::to_string(iterations) + " it";
+  };
+  lines.push_back("skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
+                  " patches, " + solver(s.cg_iterations) + ", max slide " + fmt(s.max_slide) +
+                  ", " + std::to_string(s.fallbacks) + " fallbacks -> " + out_path);
   if (o.verbose)
     for (size_t p = 0; p < result.patches.size(); ++p) {
       const PatchFrameReport& r = result.patches[p];
       lines.push_back("  patch " + std::to_string(p) + ": " +
                       (setup.patches[p].skipped
                            ? std::string("skipped (all vertices on loops)")
-                           : (s.cholesky ? std::string("Cholesky")
-                                         : "CG " + std::to_string(r.cg_iterations) +
-                                               " it, residual " + fmt(r.cg_residual) +
-                                               (r.direct_solve ? " (solved directly)" : "")) +
-                                 ", located " + std::to_string(r.located_in_image) + " + " +
+                           : solver(r.cg_iterations) +
+                                 (cholesky ? "" : ", residual " + fmt(r.cg_residual)) +
+                                 (r.direct_solve ? " (solved directly)" : "") + ", located " +
+                                 std::to_string(r.located_in_image) + " + " +
                                  std::to_string(r.located_fallback) + " fallback, net flips " +
                                  std::to_string(r.frame_net_flips) + ", slide max " +
                                  fmt(r.max_slide) + " mean " + fmt(r.mean_slide)));
@@ -176,20 +328,40 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
 
 int run(const CliOptions& o) {
   const cli::Verbosity verbosity =
-      o.quiet ? cli::Verbosity::Quiet
-              : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
+      o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
+  const auto t_run = std::chrono::steady_clock::now();
   const SlideOptions options = slide_options(o);
-  const std::vector<std::string> outputs = output_paths(o);
+  std::vector<std::string> outputs = o.rig ? std::vector<std::string>{} : output_paths(o);
+  if (!o.rig && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
 
-  const MeshFile bind = read_mesh_file(o.bind);
+  // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
+  // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
+  const MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
+  RigClip clip;
+  if (o.rig) {
+    clip = rig_clip(bind, {o.animation, o.fps});
+    std::vector<std::string> inputs = o.patches;
+    inputs.push_back(o.bind);
+    for (const std::string& name : clip.names) {
+      const fs::path target = fs::path(o.output) / (name + "." + o.format);
+      for (const std::string& in : inputs)
+        if (same_file(target, in))
+          throw Error(ErrorKind::Usage, "output " + target.string() + " would overwrite input " +
+                                            in + "; choose another --output folder");
+      outputs.push_back(target.string());
+    }
+  }
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
+  RunReport report;
+  const SlideControls controls = slide_controls(o, bind, report);
   // --no-slide measures the I/O floor of a run: no bind set-up, frames copied unchanged.
   const BindSetup setup =
-      o.no_slide ? BindSetup{} : bind_setup(bind.mesh, selections, options, [&](Index f) {
+      o.no_slide ? BindSetup{} : bind_setup(bind.mesh, selections, options, controls, [&](Index f) {
         return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
       });
+  report.bind_seconds = seconds_since(t_run);
   size_t sliding = 0;
   for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
   if (o.no_slide && verbosity != cli::Verbosity::Quiet)
@@ -197,37 +369,47 @@ int run(const CliOptions& o) {
                  "skinslide: %s: --no-slide: frames are read, checked and written unchanged\n",
                  o.bind.c_str());
   else if (verbosity != cli::Verbosity::Quiet)
-    std::fprintf(stderr,
-                 "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
+    std::fprintf(stderr, "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
                  o.bind.c_str(), setup.patches.size(), sliding, to_string(options.density).c_str(),
                  to_string(options.holes).c_str());
   if (verbosity == cli::Verbosity::Verbose)
     for (size_t p = 0; p < setup.patches.size(); ++p) {
       const PatchNet& n = setup.patches[p];
-      std::fprintf(
-          stderr,
-          "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n", p,
-          n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
-          n.skipped ? " (skipped)" : "", n.bind_net_flips);
+      std::fprintf(stderr, "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n",
+                   p, n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
+                   n.skipped ? " (skipped)" : "", n.bind_net_flips);
+      if (!n.skipped)
+        std::fprintf(stderr, "    outer loop from vertex %d%s, corners %d,%d,%d,%d%s, %zu pinned\n",
+                     n.vertices[n.loops[n.outer_loop].front()], n.outer_loop_chosen ? " (chosen)" : "",
+                     n.vertices[n.corners[0]], n.vertices[n.corners[1]], n.vertices[n.corners[2]],
+                     n.vertices[n.corners[3]], n.corners_chosen ? " (chosen)" : "", n.pinned.size());
     }
+  if (verbosity == cli::Verbosity::Verbose && !controls.pins.empty())
+    std::fprintf(stderr, "  %zu pins, %d of them on a boundary loop or outside every patch (ignored)\n",
+                 controls.pins.size(), setup.pins_ignored);
   make_output_dir(o.output);
+  if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
 
-  const size_t count = o.frames.size();
+  const size_t count = outputs.size();
   unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
   threads = static_cast<unsigned>(std::min<size_t>(threads, count));
   cli::Progress progress(count, verbosity, isatty(STDERR_FILENO) != 0);
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
   std::vector<std::unique_ptr<Error>> errors(count);
+  if (!o.report.empty()) report.frames.resize(count);
   auto worker = [&] {
     for (size_t i; !stop && (i = next++) < count;) {
       try {
-        progress.done(i, run_frame(setup, bind, o, o.frames[i], outputs[i]));
+        ReportFrame* record = o.report.empty() ? nullptr : &report.frames[i];
+        progress.done(i, o.rig ? run_rig_frame(setup, bind, clip, o, i, outputs[i], record)
+                               : run_frame(setup, bind, o, o.frames[i], outputs[i], record));
       } catch (const Error& e) {
         errors[i] = std::make_unique<Error>(e);
         stop = true;  // fail fast: a farm task with a bad frame should fail, not half-succeed
       } catch (const std::exception& e) {
-        errors[i] = std::make_unique<Error>(ErrorKind::Internal, o.frames[i] + ": " + e.what());
+        errors[i] = std::make_unique<Error>(ErrorKind::Internal,
+                                            (o.rig ? clip.names[i] : o.frames[i]) + ": " + e.what());
         stop = true;
       }
     }
@@ -238,6 +420,13 @@ int run(const CliOptions& o) {
   progress.finish();
   for (const auto& e : errors)
     if (e) throw *e;  // the first bad frame in list order
+  if (!o.report.empty()) {
+    report.bind = o.bind;
+    report.patch_files = o.patches;
+    report.timings = !o.report_no_timings;
+    report.wall_seconds = seconds_since(t_run);
+    write_file_atomic(o.report, report_json(setup, report));
+  }
   if (verbosity != cli::Verbosity::Quiet)
     std::fprintf(stderr, "skinslide: %zu frames %s in %.2f s -> %s\n", count,
                  o.no_slide ? "copied" : "slid", progress.elapsed_seconds(), o.output.c_str());
@@ -249,17 +438,18 @@ int run(const CliOptions& o) {
 int main(int argc, char** argv) {
   std::setlocale(LC_ALL, "C");
   CliOptions o;
-  CLI::App app{"skinslide " + std::string(version()) +
-                   ": skin sliding for deformed character meshes (Yang & Zhang 2010, force-density "
-                   "bar nets).\n"
-                   "Flattens each patch of the bind mesh and of every frame onto the unit square "
-                   "and moves the\n"
-                   "frame's patch vertices back to where the bind's flattening puts them, on the "
-                   "frame's surface.\n"
-                   "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): "
-                   "`12`, `12-40`,\n"
-                   "`pBody.f[12:40]`; whitespace or commas between them, `#` comments.",
-               "skinslide"};
+  CLI::App app{
+      "skinslide " + std::string(version()) +
+      ": skin sliding for deformed character meshes (Yang & Zhang 2010, force-density bar nets).\n"
+      "Flattens each patch of the bind mesh and of every frame onto the unit square and moves the\n"
+      "frame's patch vertices back to where the bind's flattening puts them, on the frame's surface.\n"
+      "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, `12-40`,\n"
+      "`pBody.f[12:40]`; whitespace or commas between them, `#` comments. For .gltf/.glb the faces\n"
+      "are the triangles of the mesh's triangle primitives, in primitive order (vertices welded by\n"
+      "position for connectivity only).\n"
+      "A rigged glTF character can be its own frame source:\n"
+      "  skinslide --patch P.txt --animation NAME|INDEX [--fps N | --keyframes] character.glb",
+      "skinslide"};
   app.set_version_flag("--version", std::string("skinslide ") + version());
   app.get_formatter()->column_width(36);
 
@@ -269,11 +459,40 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false)
       ->type_name("FILE")
       ->group(in);
-  app.add_option("bind", o.bind, "Bind mesh (.obj)")->required()->type_name("BIND")->group(in);
-  app.add_option("frames", o.frames, "Deformed frames: the bind mesh with moved vertices")
-      ->required()
-      ->type_name("FRAME...")
-      ->group(in);
+  app.add_option("bind", o.bind, "Bind mesh (.obj, .gltf, .glb)")->required()->type_name("BIND")->group(in);
+  auto* frames_opt =
+      app.add_option("frames", o.frames,
+                     "Deformed frames: the bind mesh with moved vertices (none with --animation)")
+          ->type_name("FRAME...")
+          ->group(in);
+
+  auto* gl = "glTF";
+  app.add_option("--mesh", o.mesh, "Mesh of a .gltf/.glb holding several (name, else index)")
+      ->type_name("NAME|INDEX")
+      ->group(gl);
+  auto* anim = app.add_option("--animation", o.animation,
+                              "BIND is a rigged glTF character: pose its skin at each sampled time "
+                              "of this clip (name, else index) and slide those frames")
+                   ->type_name("NAME|INDEX")
+                   ->excludes(frames_opt)
+                   ->group(gl);
+  auto* fps = app.add_option("--fps", o.fps,
+                             "Sample the clip every 1/N s from its first key to its last")
+                  ->check(CLI::Range(0.001, 100000.0))
+                  ->type_name("N")
+                  ->needs(anim)
+                  ->group(gl);
+  app.add_flag("--keyframes", o.keyframes, "Sample the clip at its key times (the default)")
+      ->needs(anim)
+      ->excludes(fps)
+      ->group(gl);
+  app.add_option("--format", o.format,
+                 "Format of the slid frames of --animation, named <character>.<frame>.<format>, "
+                 "frame numbers from 0000")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"obj", "glb"}))
+      ->needs(anim)
+      ->group(gl);
 
   auto* out = "Output";
   app.add_option("-o,--output", o.output, "Folder for the slid frames (same file names)")
@@ -281,11 +500,25 @@ int main(int argc, char** argv) {
       ->type_name("DIR")
       ->group(out);
 
+  app.add_option("--dump", o.dump_dir,
+                 "Folder for EXR images of each patch's nets: ID lookup image and geometry image "
+                 "(P, coverage, slide field), for the bind and every frame (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview", o.preview_dir,
+                 "Folder for a PNG per frame and patch: bind net and frame net drawn over each "
+                 "other, slides marked (off by default)")
+      ->type_name("DIR")
+      ->group(out);
+  app.add_option("--preview-size", o.preview_size, "Side of the preview PNGs, pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 8192))
+      ->group(out);
+
   auto* method = "Method";
-  app.add_option(
-         "--density", o.density,
-         "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
-         "= Lmin/L, uniform = 1")
+  app.add_option("--density", o.density,
+                 "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
+                 "= Lmin/L, uniform = 1")
       ->capture_default_str()
       ->check(CLI::IsMember({"paper", "inverse", "length", "uniform"}))
       ->group(method);
@@ -338,9 +571,73 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run_group);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run_group);
   app.get_option("--quiet")->excludes("--verbose");
+  app.set_config("--config", "", "Read options from a TOML or INI file (`density = \"paper\"`); "
+                                 "the command line overrides it")
+      ->type_name("FILE")
+      ->check(CLI::ExistingFile)
+      ->group(run_group);
+
+  auto* controls = "Controls";
+  auto* weights =
+      app.add_option("--weights", o.weights,
+                     "Slide weights in [0,1]: one a line in vertex order, or 'index weight' pairs "
+                     "(unlisted = 0); output = lerp(frame, slid, weight)")
+          ->type_name("FILE")
+          ->group(controls);
+  app.add_option("--weights-from-obj-color", o.weights_color,
+                 "Slide weights from the bind OBJ's vertex colours (v x y z r g b), this channel")
+      ->check(CLI::IsMember({"r", "g", "b"}))
+      ->excludes(weights)
+      ->group(controls);
+  app.add_option("--strength", o.strength,
+                 "Multiplies every slide weight; the product is clamped to [0,1]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6))
+      ->group(controls);
+  app.add_option("--pin", o.pin,
+                 "Vertex ids that do not slide (12, 12-40, pBody.vtx[12:40]); the skin around "
+                 "them does")
+      ->type_name("FILE")
+      ->group(controls);
+  app.add_option("--corners", o.corners,
+                 "Four vertex ids on a patch's boundary loop, in walking order, for the square's "
+                 "corners (0,0) (1,0) (1,1) (0,1); that loop becomes the outer loop (repeatable: "
+                 "one per patch)")
+      ->type_name("A,B,C,D")
+      ->allow_extra_args(false)
+      ->group(controls);
+  app.add_option("--outer-loop-vertex", o.outer_loop_vertices,
+                 "A vertex id on the boundary loop to put on the square (repeatable: one per patch)")
+      ->type_name("V")
+      ->allow_extra_args(false)
+      ->check(CLI::Range(0, 2147483647))
+      ->group(controls);
+  auto* report_opt =
+      app.add_option("--report", o.report,
+                     "Write a JSON report: per frame and patch CG, location, slide and edge-spread "
+                     "figures, totals and timings")
+          ->type_name("FILE.json")
+          ->group(controls);
+  app.add_flag("--report-no-timings", o.report_no_timings,
+               "Leave the timings out of the report (it then depends on the inputs only)")
+      ->needs(report_opt)
+      ->group(controls);
 
   try {
     app.parse(argc, argv);
+    o.rig = anim->count() > 0;
+    if (o.no_slide && (o.rig || !o.report.empty() || !o.dump_dir.empty() || !o.preview_dir.empty()))
+      throw CLI::ValidationError(
+          "--no-slide",
+          "copies frame files only: not with --animation, --report, --dump or --preview");
+    if (!o.rig && o.frames.empty())
+      throw CLI::ValidationError("FRAME...", "give at least one FRAME, or --animation with a rigged glTF BIND");
+    if (o.rig) {
+      std::string ext = fs::path(o.bind).extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (ext != ".gltf" && ext != ".glb")
+        throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + o.bind);
+    }
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::fprintf(stderr, "skinslide: error: %s\nRun with --help for the options.\n", e.what());

@@ -1,4 +1,14 @@
-// glTF 2.0 (.gltf + .bin / data URIs, and .glb) in and out. The only tinygltf user.
+// glTF 2.0 (.gltf + .bin / data URIs, and .glb) in and out. With io/gltf_accessor and
+// io/gltf_rig, the only tinygltf user; this header does not expose tinygltf (GltfDocument is
+// defined in io/gltf_document.h, included by io/*.cpp only).
+//
+// The surface (README "glTF"): all triangle primitives (TRIANGLES, TRIANGLE_STRIP and
+// TRIANGLE_FAN, expanded to triangles as the spec orders them) of one mesh, in primitive order;
+// points and lines primitives are not part of it. Face f of the PolyMesh is the f-th triangle in
+// that order, so patch files count triangles. Raw vertices (the elements of each primitive's
+// POSITION accessor, primitives concatenated) are welded by exact position for connectivity:
+// welded vertex ids follow the first raw vertex at each position. Morph targets are not applied
+// (the base POSITION is the surface).
 #pragma once
 
 #include <string>
@@ -7,13 +17,40 @@
 
 namespace skinslide {
 
-/// Reads the chosen mesh of a glTF/GLB file: all triangle primitives in primitive order, vertices
-/// welded by exact position for connectivity (MeshFile::mesh), the document kept for writing.
-/// \throw Error(Input) naming the path (and mesh/accessor) on anything malformed or unsupported.
+/// Reads the chosen mesh of a glTF/GLB file (GLB if the bytes start with the GLB magic): the
+/// welded triangle surface (MeshFile::mesh) and the document, kept for writing.
+/// `options.mesh`: empty = the only mesh; else a mesh name, or failing that an index.
+/// Sparse accessors, normalized and quantized (KHR_mesh_quantization) attributes, interleaved
+/// buffer views and external or data-URI buffers are read. Images are not decoded.
+/// \throw Error(Input) naming the path (and mesh, primitive, accessor) on anything malformed or
+///        unsupported: Draco or meshopt compression, no triangle, a missing POSITION, an index or
+///        element out of range, a non-finite position; with several meshes and no choice, the
+///        message lists them with their primitive and vertex counts.
 MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options);
 
-/// Writes `frame`'s document with POSITION (and NORMAL/TANGENT) changed for the slid vertices.
-/// \throw Error(Output) when the file cannot be written.
+/// Writes `frame`'s document with the slid vertices moved: every raw copy of a moved welded
+/// vertex gets its new position; NORMAL, and TANGENT xyz (w kept), are the frame's normals of
+/// the landing triangle's raw corners interpolated with the slide's barycentric weights,
+/// renormalised. Plain float accessors are edited in place (only the moved vertices' bytes
+/// change); sparse, normalized or quantized ones are replaced by a new float accessor appended
+/// to buffer 0. Edited accessors get exact min/max. Everything else (nodes, materials, images,
+/// skins, animations, extensions, extras) is written back as tinygltf read it.
+/// `out_path` ending in .glb gives a GLB; else a .gltf with its buffers as `<stem>.bin`,
+/// `<stem>_1.bin`, ... beside it. External image URIs are rewritten to reach the same images
+/// from the output's folder. Each file is written atomically.
+/// \pre `frame` was read by read_gltf_file (or made by posed_gltf_file); `slid` samples index
+///      its triangles with corner slots 0..2.
+/// \throw Error(Output) when a file cannot be written.
 void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std::string& out_path);
+
+/// A static copy of a skinned `character` in a given pose: POSITION (and NORMAL, when both the
+/// primitive and `raw_normals` have them) of every raw vertex replaced by the pose, the skin
+/// detached from the mesh's nodes and JOINTS_n/WEIGHTS_n dropped from its primitives (a viewer
+/// would otherwise deform it again). The welded mesh takes each welded vertex's first raw copy.
+/// \param raw_positions one per raw vertex, in the mesh node's space (pose/skinning.h
+///        to_node_space), so that a viewer shows the pose where the animated character is.
+/// \param raw_normals one per raw vertex, or empty to keep the stored normals.
+MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positions,
+                         const Positions3& raw_normals);
 
 }  // namespace skinslide

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
+#include "io/gltf.h"
 #include "io/obj_read.h"
 #include "io/obj_rewrite.h"
 
@@ -22,11 +23,14 @@ MeshFormat mesh_format(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".obj") return MeshFormat::Obj;
+  if (ext == ".gltf") return MeshFormat::Gltf;
+  if (ext == ".glb") return MeshFormat::Glb;
   throw Error(ErrorKind::Usage,
-              path + ": unknown mesh format '" + ext + "' (expected .obj)");
+              path + ": unknown mesh format '" + ext + "' (expected .obj, .gltf or .glb)");
 }
 
-MeshFile read_mesh_file(const std::string& path, const MeshReadOptions& /*options*/) {
+MeshFile read_mesh_file(const std::string& path, const MeshReadOptions& options) {
+  if (mesh_format(path) != MeshFormat::Obj) return read_gltf_file(path, options);
   MeshFile file;
   file.path = path;
   file.format = mesh_format(path);
@@ -61,6 +65,7 @@ void require_same_topology(const MeshFile& bind, const MeshFile& frame) {
 
 void write_slid_mesh_file(const MeshFile& frame, const SlidVertices& slid,
                           const std::string& out_path) {
+  if (frame.gltf) return write_gltf_file(frame, slid, out_path);
   Positions3 positions = apply_slide(frame.mesh.positions, slid);
   write_file_atomic(out_path, rewrite_obj(*frame.obj, frame.mesh.positions, positions));
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -32,6 +33,109 @@ Index bar_index(const std::vector<std::array<Index, 2>>& bars, Index a, Index b)
   const auto it = std::lower_bound(bars.begin(), bars.end(), key);
   SKINSLIDE_CHECK(it != bars.end() && *it == key, "a loop edge is a bar");
   return static_cast<Index>(it - bars.begin());
+}
+
+// What the controls ask of one patch; mesh vertex ids.
+struct PatchChoice {
+  Index outer_vertex = -1;  ///< a vertex on the chosen outer loop; -1 = automatic
+  std::string outer_source;
+  bool has_corners = false;
+  std::array<Index, 4> corners{};
+  std::string corners_source;
+};
+
+std::string corners_text(const std::array<Index, 4>& c) {
+  return "--corners " + std::to_string(c[0]) + "," + std::to_string(c[1]) + "," +
+         std::to_string(c[2]) + "," + std::to_string(c[3]);
+}
+
+int loop_of(const PatchComponent& comp, Index v) {
+  for (size_t l = 0; l < comp.loops.size(); ++l)
+    if (std::find(comp.loops[l].begin(), comp.loops[l].end(), v) != comp.loops[l].end())
+      return static_cast<int>(l);
+  return -1;
+}
+
+void check_vertex(const std::string& option, Index v, Index vertex_count) {
+  if (v < 0 || v >= vertex_count)
+    throw Error(ErrorKind::Usage, option + ": vertex " + std::to_string(v) +
+                                      " is out of range (the bind has " +
+                                      std::to_string(vertex_count) + " vertices, numbered 0 to " +
+                                      std::to_string(vertex_count - 1) + ")");
+}
+
+// Resolves the corner and outer-loop choices to the patches whose loops they name. A choice
+// names a loop, not a patch number: patch order is an implementation detail a TD never sees,
+// while a vertex id can be read off the rig. A loop shared by two patches serves both.
+std::vector<PatchChoice> patch_choices(const std::vector<PatchComponent>& comps,
+                                       const SlideControls& controls, Index vertex_count) {
+  std::vector<PatchChoice> choices(comps.size());
+  auto conflict = [](size_t c, const std::string& a, const std::string& b) {
+    return Error(ErrorKind::Usage, "patch " + std::to_string(c) + ": " + a + " and " + b +
+                                       " choose different outer loops or corners for it");
+  };
+  for (Index v : controls.outer_loop_vertices) {
+    const std::string source = "--outer-loop-vertex " + std::to_string(v);
+    check_vertex(source, v, vertex_count);
+    bool used = false;
+    for (size_t c = 0; c < comps.size(); ++c) {
+      const int l = loop_of(comps[c], v);
+      if (l < 0) continue;
+      used = true;
+      PatchChoice& ch = choices[c];
+      if (ch.outer_vertex >= 0 && loop_of(comps[c], ch.outer_vertex) != l)
+        throw conflict(c, ch.outer_source, source);
+      ch.outer_vertex = v;
+      ch.outer_source = source;
+    }
+    if (!used)
+      throw Error(ErrorKind::Usage, source + ": vertex " + std::to_string(v) +
+                                        " is not on a boundary loop of any patch");
+  }
+  for (const auto& q : controls.corners) {
+    const std::string source = corners_text(q);
+    for (Index v : q) check_vertex(source, v, vertex_count);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < i; ++j)
+        if (q[i] == q[j])
+          throw Error(ErrorKind::Usage,
+                      source + ": vertex " + std::to_string(q[i]) + " is named twice");
+    bool used = false;
+    Index stray = q[0];
+    for (size_t c = 0; c < comps.size(); ++c) {
+      const int l = loop_of(comps[c], q[0]);
+      if (l < 0) continue;
+      const auto& loop = comps[c].loops[l];
+      bool all = true;
+      for (Index v : q)
+        if (std::find(loop.begin(), loop.end(), v) == loop.end()) {
+          stray = v;
+          all = false;
+          break;
+        }
+      if (!all) continue;
+      used = true;
+      PatchChoice& ch = choices[c];
+      if (ch.has_corners) throw conflict(c, ch.corners_source, source);
+      if (ch.outer_vertex >= 0 && loop_of(comps[c], ch.outer_vertex) != l)
+        throw conflict(c, ch.outer_source, source);
+      ch.has_corners = true;
+      ch.corners = q;
+      ch.corners_source = source;
+      if (ch.outer_vertex < 0) {
+        ch.outer_vertex = q[0];
+        ch.outer_source = source;
+      }
+    }
+    if (!used)
+      throw Error(
+          ErrorKind::Usage,
+          source + ": vertex " + std::to_string(stray) +
+              (stray == q[0] ? std::string(" is not on a boundary loop of any patch")
+                             : " is not on the boundary loop through vertex " +
+                                   std::to_string(q[0]) + "; the four corners go on one loop"));
+  }
+  return choices;
 }
 
 // The bind net: the outer loop on the square, everything else in equilibrium. With Holes::Fill
@@ -71,7 +175,8 @@ Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const P
   return solved;
 }
 
-PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const SlideOptions& options) {
+PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const SlideOptions& options,
+                   const PatchChoice& choice, const std::vector<char>& pinned) {
   PatchNet patch;
   patch.selection = comp.selection;
   patch.faces = comp.faces;
@@ -114,17 +219,52 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
     patch.loops.push_back(std::move(loop));
   }
   patch.outer_loop = outer_loop(lengths, starts);
-  for (Index v = 0; v < static_cast<Index>(patch.vertices.size()); ++v)
-    if (!on_loop[v]) patch.free_vertices.push_back(v);
+  if (choice.outer_vertex >= 0) {
+    patch.outer_loop = loop_of(comp, choice.outer_vertex);
+    patch.outer_loop_chosen = true;
+  }
+  std::vector<char> fixed = on_loop;  // in the frame nets: loops and pins
+  for (Index v = 0; v < static_cast<Index>(patch.vertices.size()); ++v) {
+    if (on_loop[v]) continue;
+    if (!pinned.empty() && pinned[patch.vertices[v]]) {
+      patch.pinned.push_back(v);
+      fixed[v] = 1;
+    } else {
+      patch.free_vertices.push_back(v);
+    }
+  }
   patch.skipped = patch.free_vertices.empty();
   if (patch.skipped) return patch;  // nothing to move: no unwrap needed, whatever the loops
   patch.topology = triangle_topology(patch.triangles, static_cast<Index>(patch.vertices.size()));
 
   const auto& outer = patch.loops[patch.outer_loop];
-  const SquareBoundary square = square_positions(gather(points, outer));
+  SquareBoundary square;
+  if (choice.has_corners) {
+    std::array<Index, 4> at{};
+    for (int j = 0; j < 4; ++j)
+      at[j] = static_cast<Index>(std::find(outer.begin(), outer.end(), local(choice.corners[j])) -
+                                 outer.begin());
+    std::array<Index, 4> walk{};  // the corners as the loop meets them, from the first one named
+    const Index n = static_cast<Index>(outer.size());
+    std::vector<std::pair<Index, Index>> by_offset;
+    for (int j = 0; j < 4; ++j) by_offset.push_back({(at[j] - at[0] + n) % n, choice.corners[j]});
+    std::sort(by_offset.begin(), by_offset.end());
+    for (int j = 0; j < 4; ++j) walk[j] = by_offset[j].second;
+    if (walk != choice.corners)
+      throw Error(ErrorKind::Usage, choice.corners_source +
+                                        ": the corners are not in the loop's walking order; "
+                                        "walking from " +
+                                        std::to_string(choice.corners[0]) +
+                                        " the loop meets them as " + corners_text(walk).substr(10));
+    square = square_positions(gather(points, outer), at);
+    patch.corners_chosen = true;
+  } else {
+    square = square_positions(gather(points, outer));
+  }
   for (int j = 0; j < 4; ++j) patch.corners[j] = outer[square.corners[j]];
+  patch.bind_lengths = bar_lengths(points, patch.bars);
   const std::vector<double> q =
-      force_densities(bar_lengths(points, patch.bars), options.density, options.q_floor);
+      force_densities(patch.bind_lengths, options.density, options.q_floor);
   // The frame nets' free nodes are among the bind net's: its fill-reducing order serves them too.
   std::vector<Index> node_order;
   patch.bind_net = bind_net(patch, q, square.positions, options.holes, node_order);
@@ -134,7 +274,7 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   BarNet frame;
   frame.node_count = static_cast<Index>(patch.vertices.size());
   frame.bars = patch.bars;
-  frame.fixed = on_loop;
+  frame.fixed = std::move(fixed);
   patch.solver =
       std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net, node_order);
   return patch;
@@ -144,20 +284,61 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
 
 BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
                      const SlideOptions& options, const FaceNamer& name_face) {
+  return bind_setup(bind, selections, options, SlideControls{}, name_face);
+}
+
+BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
+                     const SlideOptions& options, const SlideControls& controls,
+                     const FaceNamer& name_face) {
   const FaceNamer namer =
       name_face ? name_face : [](Index f) { return "face " + std::to_string(f); };
   BindSetup setup;
   setup.options = options;
   setup.vertex_count = bind.vertex_count();
+  const Index nv = setup.vertex_count;
+
+  if (!controls.weight.empty() && static_cast<Index>(controls.weight.size()) != nv)
+    throw Error(ErrorKind::Usage, "there are " + std::to_string(controls.weight.size()) +
+                                      " slide weights; the bind has " + std::to_string(nv) +
+                                      " vertices");
+  if (!(controls.strength >= 0) || !std::isfinite(controls.strength))
+    throw Error(ErrorKind::Usage, "--strength must be a finite number >= 0");
+  for (size_t v = 0; v < controls.weight.size(); ++v)
+    if (!(controls.weight[v] >= 0 && controls.weight[v] <= 1))
+      throw Error(ErrorKind::Usage, "vertex " + std::to_string(v) + ": slide weight " +
+                                        std::to_string(controls.weight[v]) + " is outside [0, 1]");
+  if (!controls.weight.empty() || controls.strength < 1) {
+    setup.weight.assign(nv, 1.0);
+    for (Index v = 0; v < nv; ++v) {
+      const double w = controls.weight.empty() ? 1.0 : controls.weight[v];
+      setup.weight[v] = std::clamp(w * controls.strength, 0.0, 1.0);
+    }
+  }
+  std::vector<char> pinned;
+  if (!controls.pins.empty()) {
+    pinned.assign(nv, 0);
+    for (Index v : controls.pins) {
+      check_vertex("--pin", v, nv);
+      pinned[v] = 1;
+    }
+  }
+
   const std::vector<PatchComponent> comps = patch_components(bind, selections, namer);
+  const std::vector<PatchChoice> choices = patch_choices(comps, controls, nv);
   for (size_t c = 0; c < comps.size(); ++c) {
     try {
-      setup.patches.push_back(patch_net(bind, comps[c], options));
+      setup.patches.push_back(patch_net(bind, comps[c], options, choices[c], pinned));
     } catch (const Error& e) {
       throw Error(e.kind(), "patch " + std::to_string(c) + " (" + namer(comps[c].faces.front()) +
                                 ", " + std::to_string(comps[c].faces.size()) +
                                 " faces): " + e.what());
     }
+  }
+  if (!pinned.empty()) {
+    Index distinct = 0, used = 0;
+    for (char p : pinned) distinct += p;
+    for (const PatchNet& p : setup.patches) used += static_cast<Index>(p.pinned.size());
+    setup.pins_ignored = distinct - used;
   }
   return setup;
 }

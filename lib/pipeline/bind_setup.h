@@ -29,10 +29,15 @@ struct PatchNet {
   TriangleTopology topology;               ///< neighbours of `triangles`, for walking frame nets
   std::vector<std::vector<Index>> loops;   ///< boundary loops, local ids, each from its smallest
   Index outer_loop = 0;                    ///< index into `loops`
-  std::array<Index, 4> corners{};    ///< local ids of the square's corners (0,0) (1,0) (1,1) (0,1)
-  bool skipped = false;              ///< every vertex is on a boundary loop: nothing slides
-  Positions2 bind_net;               ///< 2D position of every local vertex
-  std::vector<Index> free_vertices;  ///< local ids that slide (not on any loop), ascending
+  std::array<Index, 4> corners{};  ///< local ids of the square's corners (0,0) (1,0) (1,1) (0,1)
+  bool skipped = false;            ///< every vertex is on a boundary loop: nothing slides
+  Positions2 bind_net;             ///< 2D position of every local vertex
+  std::vector<Index>
+      free_vertices;          ///< local ids that slide (not on any loop, not pinned), ascending
+  std::vector<Index> pinned;  ///< local ids pinned by SlideControls::pins (not on a loop)
+  std::vector<double> bind_lengths;  ///< 3D length of each bar in the bind
+  bool outer_loop_chosen = false;    ///< the outer loop came from --outer-loop-vertex/--corners
+  bool corners_chosen = false;       ///< the corners came from --corners
   double bind_diagonal = 0;          ///< bounding-box diagonal of the patch in the bind
   int bind_net_flips = 0;            ///< bind-net triangles of the minority orientation
   Index selection = 0;               ///< which selection (--patch file) it came from
@@ -43,6 +48,9 @@ struct BindSetup {
   SlideOptions options;
   Index vertex_count = 0;
   std::vector<PatchNet> patches;  ///< ordered by smallest mesh vertex id
+  /// Final slide weight per mesh vertex, clamp(weight * strength, 0, 1) (#V); empty = 1 everywhere.
+  std::vector<double> weight;
+  Index pins_ignored = 0;  ///< distinct pins on a boundary loop or outside every patch
 };
 
 /// Builds the bind set-up for the selected faces of `bind`.
@@ -51,5 +59,13 @@ struct BindSetup {
 /// \throw Error(Numeric) when the bind net cannot be solved.
 BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
                      const SlideOptions& options, const FaceNamer& name_face = {});
+
+/// The same with the animator's controls (weights, pins, corners, outer loops).
+/// \throw Error(Usage) naming the option and the vertex id for: an id past the last vertex, a
+///        weight outside [0, 1], a corner or outer-loop vertex on no patch's boundary loop,
+///        corners not in the loop's walking order, two choices for one patch that disagree.
+BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
+                     const SlideOptions& options, const SlideControls& controls,
+                     const FaceNamer& name_face = {});
 
 }  // namespace skinslide

@@ -1,7 +1,11 @@
 // Tunables of the method, with their defaults (README "Options").
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
+
+#include "core/types.h"
 
 namespace skinslide {
 
@@ -40,6 +44,27 @@ struct SlideOptions {
   int cg_max_iterations = 2000;  ///< past it the frame net is solved directly (counted)
   Locate locate = Locate::Walk;
   int lookup_size = 1024;  ///< ID image side in pixels (Locate::Image)
+};
+
+/// The animator's controls (README "Controls"): where and how much skin slides, and how a patch
+/// is laid on the square. Every member's default leaves the method as README "The method" states.
+/// Vertex ids are 0-based mesh ids in file order.
+struct SlideControls {
+  /// Slide weight per mesh vertex (#V, each in [0, 1]); empty = 1 everywhere. A sliding vertex
+  /// ends at lerp(frame, slid, clamp(weight * strength, 0, 1)); 0 leaves it exactly at the frame.
+  std::vector<double> weight;
+  double strength = 1;  ///< multiplies every weight (>= 0); the product is clamped to [0, 1]
+  /// Vertices that do not slide: fixed in every frame net at their bind-net position, so they
+  /// stay at the frame position while the skin around them slides. Ids on a boundary loop or
+  /// outside every patch change nothing (they never slide) and are counted in BindSetup.
+  std::vector<Index> pins;
+  /// Corner choices, each four mesh vertex ids on one boundary loop of a patch, in the loop's
+  /// walking order, for (0,0) (1,0) (1,1) (0,1). The loop holding them becomes the outer loop of
+  /// every patch it bounds. Empty = automatic (README rule 3).
+  std::vector<std::array<Index, 4>> corners;
+  /// Outer-loop choices: the boundary loop through each vertex becomes the outer loop of every
+  /// patch it bounds (corners then automatic on that loop unless `corners` names them).
+  std::vector<Index> outer_loop_vertices;
 };
 
 Density parse_density(const std::string& name);           ///< throws Usage on an unknown name

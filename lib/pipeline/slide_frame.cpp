@@ -1,6 +1,8 @@
 #include "pipeline/slide_frame.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <numeric>
 
 #include "core/check.h"
@@ -18,6 +20,27 @@ struct Moved {
   Vec3 position;
 };
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// std of log(L / L_bind) over the bars; `points` indexed by local ids.
+double edge_log_spread(const PatchNet& patch, const Positions3& points) {
+  double sum = 0, sum2 = 0;
+  size_t n = 0;
+  for (size_t b = 0; b < patch.bars.size(); ++b) {
+    const double l = (points[patch.bars[b][0]] - points[patch.bars[b][1]]).norm();
+    if (!(l > 0) || !(patch.bind_lengths[b] > 0)) continue;
+    const double r = std::log(l / patch.bind_lengths[b]);
+    sum += r;
+    sum2 += r * r;
+    ++n;
+  }
+  if (n == 0) return 0;
+  const double mean = sum / static_cast<double>(n);
+  return std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean));
+}
+
 PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, const Positions3& frame,
                              bool keep_id_image, std::vector<Moved>& moved) {
   PatchFrameReport report;
@@ -26,6 +49,7 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   Positions3 points(patch.vertices.size());
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
 
+  auto t0 = std::chrono::steady_clock::now();
   const std::vector<double> q =
       force_densities(bar_lengths(points, patch.bars), opt.density, opt.q_floor);
   FrameNetSolution net = patch.solver->solve(q, frame_net_options(opt));
@@ -34,7 +58,9 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   report.direct_solve = net.direct;
   report.frame_net = std::move(net.positions);
   report.frame_net_flips = flipped_triangles(report.frame_net, patch.triangles);
+  report.solve_seconds = seconds_since(t0);
 
+  t0 = std::chrono::steady_clock::now();
   IdImage image;
   if (opt.locate == Locate::Image || keep_id_image)
     image = id_raster(report.frame_net, patch.triangles, opt.lookup_size);
@@ -47,6 +73,10 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
           : locate_points_by_walk(targets, patch.free_vertices, report.frame_net, patch.triangles,
                                   patch.topology, report.frame_net_flips > 0);
 
+  report.locate_seconds = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  Positions3 output = points;
   double total = 0;
   for (size_t k = 0; k < where.size(); ++k) {
     const Location& loc = where[k];
@@ -57,6 +87,16 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
     if (!p.allFinite())
       throw Error(ErrorKind::Numeric, "vertex " + std::to_string(patch.vertices[v]) +
                                           ": the slid position is not finite");
+    // Weight 1 keeps the slid point's bits; weight 0 leaves the vertex out, so its line is the
+    // frame's own.
+    const double w = setup.weight.empty() ? 1.0 : setup.weight[patch.vertices[v]];
+    if (w == 0) {
+      (loc.fallback ? report.located_fallback : report.located_in_image) += 1;
+      continue;
+    }
+    if (w != 1) p = points[v] + w * (p - points[v]);
+    output[v] = p;
+    ++report.moved;
     const Index fan = patch.triangle_fan[loc.triangle];
     moved.push_back(
         {patch.vertices[v],
@@ -67,6 +107,9 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
     (loc.fallback ? report.located_fallback : report.located_in_image) += 1;
   }
   report.mean_slide = where.empty() ? 0.0 : total / static_cast<double>(where.size());
+  report.spread_frame = edge_log_spread(patch, points);
+  report.spread_slid = edge_log_spread(patch, output);
+  report.transfer_seconds = seconds_since(t0);
   if (keep_id_image) report.id_image = std::move(image);
   return report;
 }

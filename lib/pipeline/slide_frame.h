@@ -19,10 +19,18 @@ struct PatchFrameReport {
   int located_in_image = 0;   ///< vertices found through the ID image or the walk
   int located_fallback = 0;   ///< vertices found by the nearest-triangle fallback
   int frame_net_flips = 0;    ///< frame-net triangles of the minority orientation
-  double max_slide = 0;       ///< largest |slid - frame| (frame units)
+  double max_slide = 0;       ///< largest |output - frame| (frame units, after weights)
   double mean_slide = 0;      ///< mean over free vertices
-  Positions2 frame_net;       ///< 2D position of every local vertex in this frame's net
-  IdImage id_image;           ///< the lookup image (kept only with keep_id_image)
+  int moved = 0;              ///< free vertices written (weight > 0)
+  /// Edge-length spread: std of log(L / L_bind) over the patch's bars (bars of zero length
+  /// skipped), in the frame and in the output. Below `spread_frame` = sliding evened the stretch.
+  double spread_frame = 0;
+  double spread_slid = 0;
+  double solve_seconds = 0;     ///< wall time of the frame net (not deterministic)
+  double locate_seconds = 0;    ///< ID image and point location
+  double transfer_seconds = 0;  ///< 3D positions, weights, spreads
+  Positions2 frame_net;         ///< 2D position of every local vertex in this frame's net
+  IdImage id_image;             ///< the lookup image (kept only with keep_id_image)
 };
 
 struct FrameResult {
@@ -34,7 +42,9 @@ struct FrameResult {
 FrameNetOptions frame_net_options(const SlideOptions& options);
 
 /// Slides one frame. `frame` holds the deformed positions of every mesh vertex (#V).
-/// Pure: the result depends only on (setup, frame).
+/// A free vertex v of weight w = setup.weight[v] (1 when empty) is written at
+/// frame + w (slid - frame): exactly `slid` for w = 1; not written at all for w = 0.
+/// Pure: the result depends only on (setup, frame) (the *_seconds timings aside).
 /// \throw Error(Numeric) when a solve fails or a result is not finite.
 FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
                         bool keep_id_image = false);

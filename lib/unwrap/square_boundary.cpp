@@ -63,4 +63,41 @@ SquareBoundary square_positions(const Positions3& p) {
   return out;
 }
 
+SquareBoundary square_positions(const Positions3& p, const std::array<Index, 4>& corners) {
+  const Index n = static_cast<Index>(p.size());
+  // Offsets from corner 0 along the walk must increase strictly: the corners go round the
+  // square in the loop's own direction, so the net keeps the patch's orientation.
+  std::array<Index, 4> offset{};
+  for (int j = 0; j < 4; ++j) {
+    if (corners[j] < 0 || corners[j] >= n)
+      throw Error(ErrorKind::Input, "a corner is not on the outer loop");
+    offset[j] = (corners[j] - corners[0] + n) % n;
+  }
+  for (int j = 1; j < 4; ++j)
+    if (offset[j] <= offset[j - 1])
+      throw Error(ErrorKind::Input, "the corners are not four distinct vertices in the loop's walking order");
+  std::vector<double> edge(n);
+  for (Index k = 0; k < n; ++k) edge[k] = (p[(k + 1) % n] - p[k]).norm();
+
+  static const Vec2 kCorner[5] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}};
+  SquareBoundary out;
+  out.corners = corners;
+  out.positions.resize(n);
+  for (int j = 0; j < 4; ++j) {
+    const Index steps = (j < 3 ? offset[j + 1] : n) - offset[j];
+    double side = 0;
+    for (Index i = 0; i < steps; ++i) side += edge[(corners[j] + i) % n];
+    if (!(side > 0) || !std::isfinite(side))
+      throw Error(ErrorKind::Input, "the side from corner " + std::to_string(j) + " to corner " +
+                                        std::to_string((j + 1) % 4) + " has zero length");
+    double s = 0;
+    for (Index i = 0; i < steps; ++i) {
+      const Index k = (corners[j] + i) % n;
+      out.positions[k] = kCorner[j] + (s / side) * (kCorner[j + 1] - kCorner[j]);
+      s += edge[k];
+    }
+  }
+  return out;
+}
+
 }  // namespace skinslide

@@ -32,4 +32,12 @@ struct SquareBoundary {
 /// \throw Error(Input) when the loop has fewer than 4 vertices or zero length.
 SquareBoundary square_positions(const Positions3& loop_points);
 
+/// Places a loop on the unit square with chosen corners (`--corners`): `corners` are positions in
+/// the loop (points in walking order) of (0,0) (1,0) (1,1) (0,1), distinct and in walking order
+/// cyclically (corners[0] need not be 0). Vertices between two corners are spaced on that side by
+/// arc length, as above.
+/// 	hrow Error(Input) when the corners are not distinct and in walking order, or a side between
+///        two corners has zero length.
+SquareBoundary square_positions(const Positions3& loop_points, const std::array<Index, 4>& corners);
+
 }  // namespace skinslide

@@ -3,24 +3,7 @@
 # determinism across thread counts, and that errors write nothing.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/end_to_end.sh
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-check() {  # check NAME CONDITION-COMMAND...
-  local name=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name" >&2
-  fi
-}
+source "$(dirname "$0")/harness.sh"
 
 expect_exit() {  # expect_exit CODE OUTDIR ARGS...: runs skinslide, checks the code and that stderr says "error"
   local code=$1 out=$2
@@ -103,5 +86,4 @@ check "an output folder that is a file is an output error (4)" expect_exit 4 "$t
 check "an output that would overwrite an input is refused (2)" expect_exit 2 data/elbow/frames --patch data/elbow/patch.txt data/elbow/bind.obj "$f"
 check "the input is intact" cmp "$f" <(git -C "$root" show HEAD:"$f" 2>/dev/null || cat "$f")
 
-echo "end_to_end: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish end_to_end

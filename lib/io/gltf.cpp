@@ -1,0 +1,606 @@
+#include "io/gltf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "io/atomic_write.h"
+#include "io/gltf_accessor.h"
+#include "io/gltf_document.h"
+
+namespace skinslide {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) {
+  throw Error(ErrorKind::Input, where + ": " + what);
+}
+
+bool has_glb_magic(const std::string& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+bool ends_with_glb(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".glb";
+}
+
+// Images are never decoded: skinslide writes them back as they were. The encoded bytes of a
+// data-URI image are kept (as_is) because nothing else holds them; buffer-view images stay in
+// their buffer and external ones keep their URI.
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && image->uri.empty()) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+  }
+  return true;
+}
+
+std::string base64(const unsigned char* data, std::size_t n) {
+  static const char kDigits[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((n + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < n; i += 3) {
+    const unsigned v = (data[i] << 16) | (data[i + 1] << 8) | data[i + 2];
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += kDigits[(v >> 6) & 63];
+    out += kDigits[v & 63];
+  }
+  if (i + 1 == n) {
+    const unsigned v = data[i] << 16;
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += "==";
+  } else if (i + 2 == n) {
+    const unsigned v = (data[i] << 16) | (data[i + 1] << 8);
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += kDigits[(v >> 6) & 63];
+    out += '=';
+  }
+  return out;
+}
+
+bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+// Where the writer finds what it needs to write images back unchanged.
+struct ImageWriteContext {
+  fs::path source_dir;  // folder of the file read
+  fs::path target_dir;  // folder of the file written
+};
+
+// External image URIs are relative to the file; a copy written elsewhere gets a URI that still
+// reaches the same image. Data-URI images are re-embedded from their original bytes.
+bool write_image_unchanged(const std::string*, const std::string*, const tinygltf::Image* image,
+                           bool, std::string* out_uri, void* user) {
+  const auto* ctx = static_cast<const ImageWriteContext*>(user);
+  if (image->as_is) {
+    *out_uri = "data:" + image->mimeType + ";base64," +
+               base64(image->image.data(), image->image.size());
+    return true;
+  }
+  if (image->uri.empty() || is_data_uri(image->uri)) return false;
+  const fs::path uri(image->uri);
+  if (uri.is_absolute() || image->uri.find("://") != std::string::npos) return false;
+  std::error_code ec;
+  const fs::path from = fs::weakly_canonical(ctx->target_dir, ec);
+  const fs::path to = fs::weakly_canonical(ctx->source_dir / uri, ec);
+  const fs::path rel = ec ? fs::path() : to.lexically_relative(from);
+  *out_uri = rel.empty() ? image->uri : rel.generic_string();
+  return true;
+}
+
+std::string describe_meshes(const tinygltf::Model& model) {
+  std::string s;
+  for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+    std::size_t vertices = 0;
+    std::set<int> counted;  // primitives may share a POSITION accessor
+    for (const tinygltf::Primitive& p : model.meshes[m].primitives) {
+      const auto it = p.attributes.find("POSITION");
+      if (it != p.attributes.end() && it->second >= 0 &&
+          it->second < static_cast<int>(model.accessors.size()) && counted.insert(it->second).second)
+        vertices += model.accessors[it->second].count;
+    }
+    s += "\n  " + std::to_string(m) + " \"" + model.meshes[m].name + "\": " +
+         std::to_string(model.meshes[m].primitives.size()) + " primitive(s), " +
+         std::to_string(vertices) + " vertices";
+  }
+  return s;
+}
+
+int choose_mesh(const tinygltf::Model& model, const std::string& path, const std::string& want) {
+  if (model.meshes.empty()) fail(path, "the file has no mesh");
+  if (want.empty()) {
+    if (model.meshes.size() == 1) return 0;
+    fail(path, std::to_string(model.meshes.size()) +
+                   " meshes; choose one with --mesh NAME|INDEX:" + describe_meshes(model));
+  }
+  int found = -1;
+  for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+    if (model.meshes[m].name != want) continue;
+    if (found >= 0)
+      fail(path, "several meshes are named \"" + want + "\"; give its index with --mesh:" +
+                     describe_meshes(model));
+    found = static_cast<int>(m);
+  }
+  if (found >= 0) return found;
+  if (want.size() < 10 && std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    const unsigned long m = std::stoul(want);
+    if (m < model.meshes.size()) return static_cast<int>(m);
+  }
+  fail(path, "no mesh \"" + want + "\" (by name or index); the meshes are:" + describe_meshes(model));
+}
+
+// The triangles of one primitive as element indices of its attributes (glTF 2.0 section 3.7.2.1:
+// strips and fans are expanded to their triangles, in order).
+std::vector<std::array<Index, 3>> primitive_triangles(const tinygltf::Model& model,
+                                                      const tinygltf::Primitive& prim,
+                                                      Index vertex_count, const std::string& where) {
+  std::vector<Index> ids;
+  if (prim.indices >= 0) {
+    const std::string iw = where + ": indices accessor " + std::to_string(prim.indices);
+    if (prim.indices >= static_cast<int>(model.accessors.size())) fail(iw, "does not exist");
+    const tinygltf::Accessor& acc = model.accessors[prim.indices];
+    if (acc.type != TINYGLTF_TYPE_SCALAR ||
+        (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) ||
+        acc.normalized)
+      fail(iw, "must be SCALAR unsigned byte/short/int");
+    const std::vector<double> v = gltf_accessor_values(model, prim.indices, iw);
+    ids.resize(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (v[i] >= vertex_count)
+        fail(iw, "index " + std::to_string(i) + " is " + std::to_string(static_cast<long long>(v[i])) +
+                     ", past the " + std::to_string(vertex_count) + " vertices");
+      ids[i] = static_cast<Index>(v[i]);
+    }
+  } else {
+    ids.resize(vertex_count);
+    for (Index i = 0; i < vertex_count; ++i) ids[i] = i;
+  }
+  std::vector<std::array<Index, 3>> tris;
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  const std::size_t n = ids.size();
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (n % 3 != 0)
+      fail(where, std::to_string(n) + " triangle-list indices: not a multiple of 3");
+    for (std::size_t i = 0; i < n; i += 3) tris.push_back({ids[i], ids[i + 1], ids[i + 2]});
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    for (std::size_t i = 0; i + 2 < n; ++i)
+      tris.push_back({ids[i], ids[i + 1 + i % 2], ids[i + 2 - i % 2]});
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    for (std::size_t i = 0; i + 2 < n; ++i) tris.push_back({ids[i + 1], ids[i + 2], ids[0]});
+  }
+  return tris;
+}
+
+bool is_triangle_mode(int mode) {
+  return mode < 0 || mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+         mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+int attribute(const tinygltf::Primitive& prim, const char* name) {
+  const auto it = prim.attributes.find(name);
+  return it == prim.attributes.end() ? -1 : it->second;
+}
+
+void check_attribute(const tinygltf::Model& model, int accessor, int type, Index count,
+                     const std::string& where) {
+  if (accessor < 0) return;
+  if (accessor >= static_cast<int>(model.accessors.size())) fail(where, "does not exist");
+  const tinygltf::Accessor& acc = model.accessors[accessor];
+  if (acc.type != type)
+    fail(where, "has type " + std::to_string(acc.type) + ", expected " + std::to_string(type));
+  if (count >= 0 && static_cast<Index>(acc.count) != count)
+    fail(where, "has " + std::to_string(acc.count) + " elements, POSITION has " +
+                    std::to_string(count));
+}
+
+}  // namespace
+
+MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options) {
+  const std::string bytes = read_file(path);
+  auto doc = std::make_shared<GltfDocument>();
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(keep_image_bytes, nullptr);
+  std::string err, warn;
+  const std::string base_dir = fs::path(path).parent_path().string();
+  doc->binary = has_glb_magic(bytes);
+  const bool ok =
+      doc->binary
+          ? loader.LoadBinaryFromMemory(&doc->model, &err, &warn,
+                                        reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        static_cast<unsigned>(bytes.size()), base_dir)
+          : loader.LoadASCIIFromString(&doc->model, &err, &warn, bytes.data(),
+                                       static_cast<unsigned>(bytes.size()), base_dir);
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    std::replace(err.begin(), err.end(), '\n', ';');
+    fail(path, "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : err));
+  }
+  const tinygltf::Model& model = doc->model;
+  doc->mesh = choose_mesh(model, path, options.mesh);
+  const tinygltf::Mesh& mesh = model.meshes[doc->mesh];
+  const std::string mesh_where = path + ": mesh " + std::to_string(doc->mesh);
+
+  MeshFile out;
+  out.path = path;
+  out.format = ends_with_glb(path) ? MeshFormat::Glb : MeshFormat::Gltf;
+  std::map<std::array<double, 3>, Index> weld;
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& prim = mesh.primitives[p];
+    const std::string where = mesh_where + " primitive " + std::to_string(p);
+    if (!is_triangle_mode(prim.mode)) continue;
+    for (const char* ext : {"KHR_draco_mesh_compression", "EXT_meshopt_compression"})
+      if (prim.extensions.count(ext))
+        fail(where, std::string("is compressed with ") + ext +
+                        ", which skinslide cannot decode; decompress the file first");
+    GltfPrimitive gp;
+    gp.primitive = static_cast<int>(p);
+    gp.position_accessor = attribute(prim, "POSITION");
+    if (gp.position_accessor < 0) fail(where, "has no POSITION attribute");
+    const std::string pw = where + ": POSITION accessor " + std::to_string(gp.position_accessor);
+    check_attribute(model, gp.position_accessor, TINYGLTF_TYPE_VEC3, -1, pw);
+    const std::vector<double> pos = gltf_accessor_values(model, gp.position_accessor, pw);
+    gp.raw_count = static_cast<Index>(pos.size() / 3);
+    gp.raw_offset = static_cast<Index>(doc->raw_positions.size());
+    gp.normal_accessor = attribute(prim, "NORMAL");
+    check_attribute(model, gp.normal_accessor, TINYGLTF_TYPE_VEC3, gp.raw_count,
+                    where + ": NORMAL accessor " + std::to_string(gp.normal_accessor));
+    gp.tangent_accessor = attribute(prim, "TANGENT");
+    check_attribute(model, gp.tangent_accessor, TINYGLTF_TYPE_VEC4, gp.raw_count,
+                    where + ": TANGENT accessor " + std::to_string(gp.tangent_accessor));
+    for (Index i = 0; i < gp.raw_count; ++i) {
+      const std::array<double, 3> key{pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]};
+      if (!std::isfinite(key[0]) || !std::isfinite(key[1]) || !std::isfinite(key[2]))
+        fail(pw, "vertex " + std::to_string(i) + " is not finite");
+      // Exact equality: seams split vertices without moving them (data/README.md); a tolerance
+      // would risk joining genuinely distinct vertices.
+      const auto [it, inserted] = weld.emplace(key, out.mesh.vertex_count());
+      if (inserted) out.mesh.positions.emplace_back(key[0], key[1], key[2]);
+      doc->welded.push_back(it->second);
+      doc->raw_positions.emplace_back(key[0], key[1], key[2]);
+    }
+    const auto tris = primitive_triangles(model, prim, gp.raw_count, where);
+    gp.first_triangle = out.mesh.face_count();
+    gp.triangle_count = static_cast<Index>(tris.size());
+    for (const auto& t : tris) {
+      const std::array<Index, 3> raw{gp.raw_offset + t[0], gp.raw_offset + t[1],
+                                     gp.raw_offset + t[2]};
+      out.mesh.add_face({doc->welded[raw[0]], doc->welded[raw[1]], doc->welded[raw[2]]});
+      doc->triangle_raw.push_back(raw);
+      doc->triangle_primitive.push_back(static_cast<int>(doc->primitives.size()));
+    }
+    doc->primitives.push_back(gp);
+  }
+  if (out.mesh.face_count() == 0) fail(mesh_where, "has no triangles");
+  out.gltf = std::move(doc);
+  return out;
+}
+
+namespace {
+
+// Per accessor to edit: its values (as read), and the components written.
+struct AccessorEdit {
+  int components = 0;
+  std::vector<double> values;  // #count x components
+  bool changed = false;
+};
+
+bool plain_float(const tinygltf::Model& model, int accessor) {
+  const tinygltf::Accessor& acc = model.accessors[accessor];
+  return acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && !acc.sparse.isSparse &&
+         acc.bufferView >= 0;
+}
+
+// Writes `edit` into `model`. A plain float accessor is edited in place (only the bytes of the
+// moved vertices change). A sparse, quantized or normalized one cannot hold an arbitrary float,
+// so it is replaced by a new float accessor over a new buffer view at the end of buffer 0; the
+// chosen mesh's primitives are re-pointed to it. Returns the accessor now holding the data.
+int store_accessor(tinygltf::Model& model, int accessor, const AccessorEdit& edit,
+                   const std::vector<char>& element_changed) {
+  const int nc = edit.components;
+  if (plain_float(model, accessor)) {
+    tinygltf::Accessor& acc = model.accessors[accessor];
+    std::vector<unsigned char>& data = model.buffers[model.bufferViews[acc.bufferView].buffer].data;
+    for (std::size_t i = 0; i < acc.count; ++i) {
+      if (!element_changed[i]) continue;
+      unsigned char* p = data.data() + gltf_element_offset(model, accessor, i);
+      for (int c = 0; c < nc; ++c) {
+        const float f = static_cast<float>(edit.values[i * nc + c]);
+        std::memcpy(p + 4 * c, &f, 4);
+      }
+    }
+    return accessor;
+  }
+  if (model.buffers.empty()) model.buffers.emplace_back();
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  while (data.size() % 4 != 0) data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = edit.values.size() * 4;
+  view.target = TINYGLTF_TARGET_ARRAY_BUFFER;
+  for (double v : edit.values) {
+    const float f = static_cast<float>(v);
+    unsigned char b[4];
+    std::memcpy(b, &f, 4);
+    data.insert(data.end(), b, b + 4);
+  }
+  model.bufferViews.push_back(view);
+  tinygltf::Accessor acc = model.accessors[accessor];
+  acc.bufferView = static_cast<int>(model.bufferViews.size()) - 1;
+  acc.byteOffset = 0;
+  acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  acc.normalized = false;
+  acc.sparse.isSparse = false;
+  acc.sparse.count = 0;
+  model.accessors.push_back(acc);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+void update_min_max(tinygltf::Model& model, int accessor, bool required) {
+  tinygltf::Accessor& acc = model.accessors[accessor];
+  if (!required && acc.minValues.empty() && acc.maxValues.empty()) return;
+  const int nc = gltf_component_count(acc.type);
+  // Bounds of the values as stored (float), so that they hold exactly.
+  const std::vector<double> v = gltf_accessor_values(model, accessor, "accessor");
+  std::vector<double> lo(nc, 0.0), hi(nc, 0.0);
+  for (std::size_t i = 0; i < acc.count; ++i)
+    for (int c = 0; c < nc; ++c) {
+      const double x = v[i * nc + c];
+      if (i == 0 || x < lo[c]) lo[c] = x;
+      if (i == 0 || x > hi[c]) hi[c] = x;
+    }
+  acc.minValues = lo;
+  acc.maxValues = hi;
+}
+
+Vec3 normalized_or(const Vec3& v, const Vec3& fallback) {
+  const double n = v.norm();
+  return n > 0 && std::isfinite(n) ? Vec3(v / n) : fallback;
+}
+
+// Stores every changed accessor (store_accessor), updates its min/max, and re-points the chosen
+// mesh's primitives to any replacement. Returns old -> new accessor for the replaced ones.
+std::map<int, int> store_edits(tinygltf::Model& model, const GltfDocument& doc,
+                               const std::map<int, AccessorEdit>& edits,
+                               const std::map<int, std::vector<char>>& changed) {
+  std::map<int, int> moved;
+  tinygltf::Mesh& mesh = model.meshes[doc.mesh];
+  for (const auto& [accessor, c] : changed) {
+    const bool is_position =
+        std::any_of(doc.primitives.begin(), doc.primitives.end(),
+                    [&](const GltfPrimitive& p) { return p.position_accessor == accessor; });
+    const int stored = store_accessor(model, accessor, edits.at(accessor), c);
+    update_min_max(model, stored, is_position);
+    if (stored == accessor) continue;
+    moved[accessor] = stored;
+    for (const GltfPrimitive& gp : doc.primitives)
+      for (auto& [name, a] : mesh.primitives[gp.primitive].attributes)
+        if (a == accessor) a = stored;
+  }
+  return moved;
+}
+
+// Serialises `model` to memory and writes it atomically: never a partial file (STYLE.md
+// section 7). `.glb` gives a GLB; anything else a .gltf with one .bin per buffer beside it.
+void write_model(tinygltf::Model model, const std::string& source_path, const std::string& out_path) {
+  const bool binary = ends_with_glb(out_path);
+  ImageWriteContext ctx{fs::path(source_path).parent_path(), fs::path(out_path).parent_path()};
+  if (ctx.source_dir.empty()) ctx.source_dir = ".";
+  if (ctx.target_dir.empty()) ctx.target_dir = ".";
+  tinygltf::TinyGLTF writer;
+  writer.SetImageWriter(write_image_unchanged, &ctx);
+  if (binary && !model.buffers.empty()) model.buffers[0].uri.clear();  // buffer 0 -> BIN chunk
+  std::ostringstream out;
+  if (!writer.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/!binary, binary) || !out)
+    throw Error(ErrorKind::Output, out_path + ": cannot write: glTF serialisation failed");
+  std::string text = std::move(out).str();
+  if (binary) {
+    write_file_atomic(out_path, text);
+    return;
+  }
+  // .gltf: the serialiser embeds buffers as data URIs; each becomes a .bin beside the file,
+  // named after it (several frames may share a folder, so never after the input's .bin).
+  const fs::path target(out_path);
+  const std::string stem = target.stem().string();
+  std::size_t cursor = 0;
+  std::vector<std::pair<std::string, const std::vector<unsigned char>*>> bins;
+  for (std::size_t b = 0; b < model.buffers.size(); ++b) {
+    const std::vector<unsigned char>& data = model.buffers[b].data;
+    const std::string embedded =
+        "\"data:application/octet-stream;base64," + base64(data.data(), data.size()) + "\"";
+    const std::size_t at = text.find(embedded, cursor);
+    SKINSLIDE_CHECK(at != std::string::npos, "serialised buffer not found in the glTF text");
+    const std::string name = stem + (b == 0 ? std::string() : "_" + std::to_string(b)) + ".bin";
+    const std::string quoted = "\"" + name + "\"";
+    text.replace(at, embedded.size(), quoted);
+    cursor = at + quoted.size();
+    bins.emplace_back((target.parent_path() / name).string(), &data);
+  }
+  for (const auto& [bin_path, data] : bins)
+    write_file_atomic(bin_path, std::string_view(reinterpret_cast<const char*>(data->data()), data->size()));
+  write_file_atomic(out_path, text);
+}
+
+}  // namespace
+
+void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std::string& out_path) {
+  SKINSLIDE_CHECK(frame.gltf != nullptr, "write_gltf_file on a file that is not glTF");
+  const GltfDocument& doc = *frame.gltf;
+  SKINSLIDE_CHECK(slid.vertex.size() == slid.sample.size() &&
+                      slid.vertex.size() == slid.position.size(),
+                  "slid vertices, samples and positions differ in count");
+  tinygltf::Model model = doc.model;
+  const Index raw_total = static_cast<Index>(doc.welded.size());
+  const Index welded_total = frame.mesh.vertex_count();
+
+  // Raw vertices of each welded vertex (CSR): every raw copy of a moved vertex moves with it.
+  std::vector<Index> start(welded_total + 1, 0), raws(raw_total);
+  for (Index r = 0; r < raw_total; ++r) ++start[doc.welded[r] + 1];
+  for (Index v = 0; v < welded_total; ++v) start[v + 1] += start[v];
+  {
+    std::vector<Index> fill(start.begin(), start.end() - 1);
+    for (Index r = 0; r < raw_total; ++r) raws[fill[doc.welded[r]]++] = r;
+  }
+
+  // Current data of every attribute accessor of the mesh, read once.
+  const std::string where = frame.path + ": mesh " + std::to_string(doc.mesh);
+  std::map<int, AccessorEdit> edits;
+  auto edit_of = [&](int accessor, int components) -> AccessorEdit& {
+    auto it = edits.find(accessor);
+    if (it != edits.end()) return it->second;
+    AccessorEdit& e = edits[accessor];
+    e.components = components;
+    e.values = gltf_accessor_values(model, accessor, where + ": accessor " + std::to_string(accessor));
+    return e;
+  };
+  std::map<int, std::vector<char>> changed;
+  auto mark = [&](int accessor, Index element) {
+    std::vector<char>& c = changed[accessor];
+    if (c.empty()) c.assign(model.accessors[accessor].count, 0);
+    c[element] = 1;
+  };
+  auto primitive_of_raw = [&](Index r) -> const GltfPrimitive& {
+    auto it = std::upper_bound(doc.primitives.begin(), doc.primitives.end(), r,
+                               [](Index x, const GltfPrimitive& p) { return x < p.raw_offset; });
+    return *(it - 1);
+  };
+  auto read3 = [&](int accessor, int components, Index element) {
+    const AccessorEdit& e = edit_of(accessor, components);
+    const double* p = e.values.data() + static_cast<std::size_t>(element) * components;
+    return Vec3(p[0], p[1], p[2]);
+  };
+
+  // Normals are interpolated from the frame as read, before any of them is overwritten.
+  struct Pending {
+    Index raw;
+    Vec3 position;
+    bool has_normal = false, has_tangent = false;
+    Vec3 normal, tangent;
+  };
+  std::vector<Pending> pending;
+  for (std::size_t i = 0; i < slid.vertex.size(); ++i) {
+    const Index v = slid.vertex[i];
+    const SurfaceSample& s = slid.sample[i];
+    SKINSLIDE_CHECK(v >= 0 && v < welded_total, "slid vertex out of range");
+    SKINSLIDE_CHECK(s.face >= 0 && s.face < static_cast<Index>(doc.triangle_raw.size()),
+                    "slid sample face out of range");
+    const auto& tri = doc.triangle_raw[s.face];
+    const GltfPrimitive& tp = doc.primitives[doc.triangle_primitive[s.face]];
+    Vec3 n = Vec3::Zero(), t = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      SKINSLIDE_CHECK(s.corner[k] >= 0 && s.corner[k] < 3, "triangle corner slot out of range");
+      const Index corner = tri[s.corner[k]] - tp.raw_offset;
+      if (tp.normal_accessor >= 0) n += s.weight[k] * read3(tp.normal_accessor, 3, corner);
+      if (tp.tangent_accessor >= 0) t += s.weight[k] * read3(tp.tangent_accessor, 4, corner);
+    }
+    for (Index j = start[v]; j < start[v + 1]; ++j) {
+      Pending p;
+      p.raw = raws[j];
+      p.position = slid.position[i];
+      const GltfPrimitive& rp = primitive_of_raw(p.raw);
+      const Index e = p.raw - rp.raw_offset;
+      // The landing triangle's primitive may lack NORMAL/TANGENT; then the copy keeps its own.
+      if (rp.normal_accessor >= 0 && tp.normal_accessor >= 0) {
+        p.has_normal = true;
+        p.normal = normalized_or(n, read3(rp.normal_accessor, 3, e));
+      }
+      if (rp.tangent_accessor >= 0 && tp.tangent_accessor >= 0) {
+        p.has_tangent = true;
+        p.tangent = normalized_or(t, read3(rp.tangent_accessor, 4, e));
+      }
+      pending.push_back(p);
+    }
+  }
+  for (const Pending& p : pending) {
+    const GltfPrimitive& rp = primitive_of_raw(p.raw);
+    const Index e = p.raw - rp.raw_offset;
+    AccessorEdit& pe = edit_of(rp.position_accessor, 3);
+    for (int c = 0; c < 3; ++c) pe.values[3 * e + c] = p.position[c];
+    mark(rp.position_accessor, e);
+    if (p.has_normal) {
+      AccessorEdit& ne = edit_of(rp.normal_accessor, 3);
+      for (int c = 0; c < 3; ++c) ne.values[3 * e + c] = p.normal[c];
+      mark(rp.normal_accessor, e);
+    }
+    if (p.has_tangent) {
+      AccessorEdit& te = edit_of(rp.tangent_accessor, 4);
+      for (int c = 0; c < 3; ++c) te.values[4 * e + c] = p.tangent[c];  // w (handedness) kept
+      mark(rp.tangent_accessor, e);
+    }
+  }
+
+  store_edits(model, doc, edits, changed);
+  write_model(std::move(model), frame.path, out_path);
+}
+
+MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positions,
+                         const Positions3& raw_normals) {
+  SKINSLIDE_CHECK(character.gltf != nullptr, "posed_gltf_file on a file that is not glTF");
+  auto doc = std::make_shared<GltfDocument>(*character.gltf);
+  SKINSLIDE_CHECK(raw_positions.size() == doc->welded.size(), "one posed position per raw vertex");
+  SKINSLIDE_CHECK(raw_normals.empty() || raw_normals.size() == doc->welded.size(),
+                  "one posed normal per raw vertex");
+  tinygltf::Model& model = doc->model;
+  std::map<int, AccessorEdit> edits;
+  std::map<int, std::vector<char>> changed;
+  auto set_all = [&](int accessor, int components, const GltfPrimitive& gp, const Positions3& v) {
+    AccessorEdit& e = edits[accessor];
+    if (e.values.empty()) {
+      e.components = components;
+      e.values = gltf_accessor_values(model, accessor, character.path + ": accessor " + std::to_string(accessor));
+    }
+    for (Index i = 0; i < gp.raw_count; ++i)
+      for (int c = 0; c < 3; ++c) e.values[static_cast<std::size_t>(i) * components + c] = v[gp.raw_offset + i][c];
+    changed[accessor].assign(model.accessors[accessor].count, 1);
+  };
+  for (const GltfPrimitive& gp : doc->primitives) {
+    set_all(gp.position_accessor, 3, gp, raw_positions);
+    if (gp.normal_accessor >= 0 && !raw_normals.empty()) set_all(gp.normal_accessor, 3, gp, raw_normals);
+  }
+  const std::map<int, int> moved = store_edits(model, *doc, edits, changed);
+  for (GltfPrimitive& gp : doc->primitives) {
+    if (moved.count(gp.position_accessor)) gp.position_accessor = moved.at(gp.position_accessor);
+    if (moved.count(gp.normal_accessor)) gp.normal_accessor = moved.at(gp.normal_accessor);
+  }
+  // The posed copy is static: left skinned, a viewer would deform it a second time.
+  for (tinygltf::Node& node : model.nodes)
+    if (node.mesh == doc->mesh) node.skin = -1;
+  for (tinygltf::Primitive& prim : model.meshes[doc->mesh].primitives)
+    for (auto it = prim.attributes.begin(); it != prim.attributes.end();)
+      it = it->first.rfind("JOINTS_", 0) == 0 || it->first.rfind("WEIGHTS_", 0) == 0
+               ? prim.attributes.erase(it)
+               : std::next(it);
+  doc->raw_positions = raw_positions;
+
+  MeshFile out;
+  out.path = character.path;
+  out.format = character.format;
+  out.mesh = character.mesh;
+  std::vector<char> seen(out.mesh.vertex_count(), 0);
+  for (std::size_t r = 0; r < doc->welded.size(); ++r) {
+    const Index v = doc->welded[r];
+    if (seen[v]) continue;  // a welded vertex takes its first raw copy's pose
+    seen[v] = 1;
+    out.mesh.positions[v] = raw_positions[r];
+  }
+  out.gltf = std::move(doc);
+  return out;
+}
+
+}  // namespace skinslide

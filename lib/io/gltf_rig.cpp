@@ -1,0 +1,241 @@
+#include "io/gltf_rig.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+
+#include "core/error.h"
+#include "io/gltf_accessor.h"
+#include "io/gltf_document.h"
+
+namespace skinslide {
+namespace {
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) {
+  throw Error(ErrorKind::Input, where + ": " + what);
+}
+
+NodeTransform rest_transform(const tinygltf::Node& node, const std::string& where) {
+  NodeTransform x;
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16) fail(where, "matrix does not have 16 numbers");
+    x.has_matrix = true;
+    x.matrix = Eigen::Map<const Eigen::Matrix4d>(node.matrix.data());  // column-major, as glTF
+    return x;
+  }
+  if (!node.translation.empty()) {
+    if (node.translation.size() != 3) fail(where, "translation does not have 3 numbers");
+    x.translation = Vec3(node.translation[0], node.translation[1], node.translation[2]);
+  }
+  if (!node.rotation.empty()) {
+    if (node.rotation.size() != 4) fail(where, "rotation does not have 4 numbers");
+    x.rotation = Quat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+  }
+  if (!node.scale.empty()) {
+    if (node.scale.size() != 3) fail(where, "scale does not have 3 numbers");
+    x.scale = Vec3(node.scale[0], node.scale[1], node.scale[2]);
+  }
+  return x;
+}
+
+Interpolation interpolation(const std::string& s, const std::string& where) {
+  if (s == "LINEAR" || s.empty()) return Interpolation::Linear;
+  if (s == "STEP") return Interpolation::Step;
+  if (s == "CUBICSPLINE") return Interpolation::CubicSpline;
+  fail(where, "unknown interpolation \"" + s + "\"");
+}
+
+std::string seconds(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f s", t);
+  return buf;
+}
+
+}  // namespace
+
+Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
+  const tinygltf::Model& model = doc.model;
+  Rig rig;
+
+  // Nodes and their parents.
+  rig.nodes.resize(model.nodes.size());
+  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+    const std::string where = path + ": node " + std::to_string(i);
+    rig.nodes[i].name = model.nodes[i].name;
+    rig.nodes[i].rest = rest_transform(model.nodes[i], where);
+  }
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    for (int c : model.nodes[i].children) {
+      const std::string where = path + ": node " + std::to_string(i);
+      if (c < 0 || c >= static_cast<int>(model.nodes.size()))
+        fail(where, "child " + std::to_string(c) + " does not exist");
+      if (rig.nodes[c].parent >= 0)
+        fail(where, "node " + std::to_string(c) + " has two parents (" +
+                        std::to_string(rig.nodes[c].parent) + " and " + std::to_string(i) + ")");
+      rig.nodes[c].parent = static_cast<Index>(i);
+    }
+  for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
+    std::size_t steps = 0;
+    for (Index j = rig.nodes[i].parent; j >= 0; j = rig.nodes[j].parent)
+      if (++steps > rig.nodes.size()) fail(path + ": node " + std::to_string(i), "is its own ancestor");
+  }
+
+  // The skin.
+  int skin_index = -1;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    if (model.nodes[i].mesh == doc.mesh && model.nodes[i].skin >= 0) {
+      skin_index = model.nodes[i].skin;
+      rig.mesh_node = static_cast<Index>(i);
+      break;
+    }
+  const std::string mesh_where = path + ": mesh " + std::to_string(doc.mesh);
+  if (skin_index < 0) fail(mesh_where, "is not skinned: no node gives it a skin");
+  if (skin_index >= static_cast<int>(model.skins.size()))
+    fail(mesh_where, "skin " + std::to_string(skin_index) + " does not exist");
+  const tinygltf::Skin& skin = model.skins[skin_index];
+  const std::string skin_where = path + ": skin " + std::to_string(skin_index);
+  for (int j : skin.joints) {
+    if (j < 0 || j >= static_cast<int>(model.nodes.size()))
+      fail(skin_where, "joint node " + std::to_string(j) + " does not exist");
+    rig.skin.joints.push_back(j);
+  }
+  const std::size_t joint_count = rig.skin.joints.size();
+  rig.skin.inverse_bind.assign(joint_count, Mat4::Identity());
+  if (skin.inverseBindMatrices >= 0) {
+    const std::string w = skin_where + ": inverseBindMatrices accessor " +
+                          std::to_string(skin.inverseBindMatrices);
+    const std::vector<double> m = gltf_accessor_values(model, skin.inverseBindMatrices, w);
+    if (model.accessors[skin.inverseBindMatrices].type != TINYGLTF_TYPE_MAT4 ||
+        m.size() < 16 * joint_count)
+      fail(w, "must hold a MAT4 for each of the " + std::to_string(joint_count) + " joints");
+    for (std::size_t j = 0; j < joint_count; ++j)
+      rig.skin.inverse_bind[j] = Eigen::Map<const Eigen::Matrix4d>(m.data() + 16 * j);
+  }
+
+  // Influences, bind positions and normals of every raw vertex.
+  const tinygltf::Mesh& mesh = model.meshes[doc.mesh];
+  bool all_normals = true;
+  for (const GltfPrimitive& gp : doc.primitives) all_normals &= gp.normal_accessor >= 0;
+  rig.bind_positions = doc.raw_positions;
+  for (const GltfPrimitive& gp : doc.primitives) {
+    const tinygltf::Primitive& prim = mesh.primitives[gp.primitive];
+    const std::string where = mesh_where + " primitive " + std::to_string(gp.primitive);
+    std::vector<std::vector<double>> joints, weights;
+    for (int set = 0;; ++set) {
+      const auto j = prim.attributes.find("JOINTS_" + std::to_string(set));
+      const auto w = prim.attributes.find("WEIGHTS_" + std::to_string(set));
+      if (j == prim.attributes.end() && w == prim.attributes.end()) break;
+      if (j == prim.attributes.end() || w == prim.attributes.end())
+        fail(where, "has only one of JOINTS_" + std::to_string(set) + " and WEIGHTS_" +
+                        std::to_string(set));
+      const std::string jw = where + ": JOINTS_" + std::to_string(set) + " accessor " + std::to_string(j->second);
+      const std::string ww = where + ": WEIGHTS_" + std::to_string(set) + " accessor " + std::to_string(w->second);
+      joints.push_back(gltf_accessor_values(model, j->second, jw));
+      weights.push_back(gltf_accessor_values(model, w->second, ww));
+      if (model.accessors[j->second].type != TINYGLTF_TYPE_VEC4 ||
+          joints.back().size() != 4 * static_cast<std::size_t>(gp.raw_count))
+        fail(jw, "must be VEC4 with one element per vertex");
+      if (model.accessors[w->second].type != TINYGLTF_TYPE_VEC4 ||
+          weights.back().size() != 4 * static_cast<std::size_t>(gp.raw_count))
+        fail(ww, "must be VEC4 with one element per vertex");
+    }
+    if (joints.empty()) fail(where, "has no JOINTS_0/WEIGHTS_0: it cannot be skinned");
+    std::vector<double> normals;
+    if (all_normals)
+      normals = gltf_accessor_values(model, gp.normal_accessor,
+                                     where + ": NORMAL accessor " + std::to_string(gp.normal_accessor));
+    for (Index v = 0; v < gp.raw_count; ++v) {
+      double total = 0;
+      for (std::size_t s = 0; s < joints.size(); ++s)
+        for (int k = 0; k < 4; ++k) {
+          const double w = weights[s][4 * v + k];
+          if (!(w > 0)) continue;  // zero (or malformed negative/NaN) weights carry nothing
+          const double jd = joints[s][4 * v + k];
+          if (jd >= static_cast<double>(joint_count))
+            fail(where, "vertex " + std::to_string(v) + ": joint " +
+                            std::to_string(static_cast<long long>(jd)) + " is past the skin's " +
+                            std::to_string(joint_count) + " joints");
+          rig.influences.joint.push_back(static_cast<Index>(jd));
+          rig.influences.weight.push_back(w);
+          total += w;
+        }
+      if (!(total > 0)) fail(where, "vertex " + std::to_string(v) + " has no positive skin weight");
+      rig.influences.start.push_back(static_cast<Index>(rig.influences.joint.size()));
+      if (all_normals)
+        rig.bind_normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+    }
+  }
+
+  // Animations (TRS channels; morph-weight channels do not move a skinned bind).
+  for (std::size_t a = 0; a < model.animations.size(); ++a) {
+    const tinygltf::Animation& src = model.animations[a];
+    const std::string where = path + ": animation " + std::to_string(a);
+    Animation anim;
+    anim.name = src.name;
+    bool first = true;
+    for (std::size_t c = 0; c < src.channels.size(); ++c) {
+      const tinygltf::AnimationChannel& ch = src.channels[c];
+      const std::string cw = where + " channel " + std::to_string(c);
+      if (ch.target_path == "weights" || ch.target_node < 0) continue;
+      AnimationChannel out;
+      if (ch.target_path == "translation") out.path = ChannelPath::Translation;
+      else if (ch.target_path == "rotation") out.path = ChannelPath::Rotation;
+      else if (ch.target_path == "scale") out.path = ChannelPath::Scale;
+      else fail(cw, "unknown target path \"" + ch.target_path + "\"");
+      if (ch.target_node >= static_cast<int>(model.nodes.size()))
+        fail(cw, "target node " + std::to_string(ch.target_node) + " does not exist");
+      if (rig.nodes[ch.target_node].rest.has_matrix)
+        fail(cw, "animates node " + std::to_string(ch.target_node) + ", which has a matrix (glTF allows only TRS there)");
+      out.node = ch.target_node;
+      if (ch.sampler < 0 || ch.sampler >= static_cast<int>(src.samplers.size()))
+        fail(cw, "sampler " + std::to_string(ch.sampler) + " does not exist");
+      const tinygltf::AnimationSampler& s = src.samplers[ch.sampler];
+      const std::string sw = where + " sampler " + std::to_string(ch.sampler);
+      out.sampler.interpolation = interpolation(s.interpolation, sw);
+      out.sampler.width = out.path == ChannelPath::Rotation ? 4 : 3;
+      out.sampler.times = gltf_accessor_values(model, s.input, sw + ": input accessor " + std::to_string(s.input));
+      out.sampler.values = gltf_accessor_values(model, s.output, sw + ": output accessor " + std::to_string(s.output));
+      const std::size_t keys = out.sampler.times.size();
+      const std::size_t per_key =
+          out.sampler.width * (out.sampler.interpolation == Interpolation::CubicSpline ? 3 : 1);
+      if (keys == 0) fail(sw, "has no keys");
+      if (model.accessors[s.input].type != TINYGLTF_TYPE_SCALAR)
+        fail(sw, "input must be SCALAR");
+      if (gltf_component_count(model.accessors[s.output].type) != out.sampler.width ||
+          out.sampler.values.size() != keys * per_key)
+        fail(sw, "output has " + std::to_string(out.sampler.values.size()) + " numbers; " +
+                     ch.target_path + " with " + std::to_string(keys) + " keys needs " +
+                     std::to_string(keys * per_key));
+      for (std::size_t k = 1; k < keys; ++k)
+        if (!(out.sampler.times[k] > out.sampler.times[k - 1]))
+          fail(sw, "key times are not strictly increasing at key " + std::to_string(k));
+      anim.start = first ? out.sampler.times.front() : std::min(anim.start, out.sampler.times.front());
+      anim.end = first ? out.sampler.times.back() : std::max(anim.end, out.sampler.times.back());
+      first = false;
+      anim.channels.push_back(std::move(out));
+    }
+    rig.animations.push_back(std::move(anim));
+  }
+  return rig;
+}
+
+Index find_animation(const Rig& rig, const std::string& want, const std::string& path) {
+  std::string list;
+  for (std::size_t a = 0; a < rig.animations.size(); ++a)
+    list += "\n  " + std::to_string(a) + " \"" + rig.animations[a].name + "\": " +
+            seconds(rig.animations[a].start) + " to " + seconds(rig.animations[a].end);
+  if (rig.animations.empty()) throw Error(ErrorKind::Usage, path + ": the file has no animation");
+  if (want.empty()) {
+    if (rig.animations.size() == 1) return 0;
+    throw Error(ErrorKind::Usage, path + ": " + std::to_string(rig.animations.size()) +
+                                      " animations; choose one with --animation NAME|INDEX:" + list);
+  }
+  for (std::size_t a = 0; a < rig.animations.size(); ++a)
+    if (rig.animations[a].name == want) return static_cast<Index>(a);
+  if (std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); }) &&
+      want.size() < 9 && std::stoul(want) < rig.animations.size())
+    return static_cast<Index>(std::stoul(want));
+  throw Error(ErrorKind::Usage, path + ": no animation \"" + want + "\"; the animations are:" + list);
+}
+
+}  // namespace skinslide

@@ -1,0 +1,22 @@
+#include "io/obj_write.h"
+
+#include "core/check.h"
+#include "io/number_format.h"
+
+namespace skinslide {
+
+std::string obj_text(const PolyMesh& mesh, const Positions3& positions, const std::string& source) {
+  SKINSLIDE_CHECK(static_cast<Index>(positions.size()) == mesh.vertex_count(),
+                  "one position per vertex");
+  std::string s = "# skinslide: " + source + "\n";
+  for (const Vec3& p : positions)
+    s += "v " + format_double(p.x()) + " " + format_double(p.y()) + " " + format_double(p.z()) + "\n";
+  for (Index f = 0; f < mesh.face_count(); ++f) {
+    s += "f";
+    for (Index k = 0; k < mesh.face_size(f); ++k) s += " " + std::to_string(mesh.face_begin(f)[k] + 1);
+    s += "\n";
+  }
+  return s;
+}
+
+}  // namespace skinslide

@@ -1,0 +1,171 @@
+#include "pipeline/dumps.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <system_error>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/version.h"
+#include "dump/geometry_image.h"
+#include "dump/preview.h"
+#include "dump/slide_field.h"
+#include "io/exr.h"
+#include "io/png.h"
+
+namespace skinslide {
+namespace {
+
+void make_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(ErrorKind::Output, dir + ": cannot create folder: " + ec.message());
+}
+
+// The attributes every dump carries (README "Dumps", header attributes).
+void describe(ExrImage& image, const std::string& source, const PatchNet& patch, int index,
+              const char* net, const char* kind) {
+  image.string_attributes = {{"skinslide.version", version()},
+                             {"skinslide.source", source},
+                             {"skinslide.net", net},
+                             {"skinslide.image", kind}};
+  image.int_attributes = {{"skinslide.patch", index}, {"skinslide.resolution", image.width}};
+  static const char* const kCornerNames[4] = {"skinslide.corner00", "skinslide.corner10",
+                                              "skinslide.corner11", "skinslide.corner01"};
+  for (int k = 0; k < 4; ++k)
+    image.int_attributes.emplace_back(kCornerNames[k], patch.vertices[patch.corners[k]]);
+}
+
+void write_id(const std::string& path, const IdImage& ids, const std::string& source,
+              const PatchNet& patch, int index, const char* net) {
+  ExrImage image;
+  image.width = image.height = ids.size;
+  image.uint_channels = {{"id", ids.ids}};
+  describe(image, source, patch, index, net, "id");
+  write_exr(path, image);
+}
+
+void write_geometry(const std::string& path, const GeometryImage& geometry, const SlideField* slide,
+                    const std::string& source, const PatchNet& patch, int index, const char* net) {
+  ExrImage image;
+  image.width = image.height = geometry.size;
+  image.float_channels = {
+      {"P.X", geometry.x}, {"P.Y", geometry.y}, {"P.Z", geometry.z}, {"A", geometry.coverage}};
+  if (slide) {
+    image.float_channels.push_back({"slide.X", slide->x});
+    image.float_channels.push_back({"slide.Y", slide->y});
+  }
+  describe(image, source, patch, index, net, "geometry");
+  write_exr(path, image);
+}
+
+Positions3 local_points(const PatchNet& patch, const Positions3& positions) {
+  Positions3 points(patch.vertices.size());
+  for (size_t k = 0; k < patch.vertices.size(); ++k) {
+    const Index v = patch.vertices[k];
+    SKINSLIDE_CHECK(v >= 0 && static_cast<size_t>(v) < positions.size(), "patch vertex id");
+    points[k] = positions[v];
+  }
+  return points;
+}
+
+bool has_net(const PatchNet& patch) {
+  return !patch.skipped && !patch.bind_net.empty() &&
+         patch.bind_net.size() == patch.vertices.size();
+}
+
+int geometry_size(const BindSetup& setup, const DumpOptions& options) {
+  const int size = options.geometry_size > 0 ? options.geometry_size : setup.options.lookup_size;
+  SKINSLIDE_CHECK(size >= 1, "geometry image size");
+  return size;
+}
+
+}  // namespace
+
+std::string dump_stem(const std::string& mesh_path) {
+  return std::filesystem::path(mesh_path).stem().string();
+}
+
+std::string dump_path(const std::string& dir, const std::string& stem, int patch,
+                      const std::string& suffix) {
+  char index[16];
+  std::snprintf(index, sizeof index, "%03d", patch);
+  return (std::filesystem::path(dir) / (stem + ".patch" + index + "." + suffix)).string();
+}
+
+void check_dump_stems(const std::vector<std::string>& frame_paths) {
+  std::map<std::string, std::string> seen;
+  for (const std::string& path : frame_paths) {
+    const std::string stem = dump_stem(path);
+    if (stem == "bind")
+      throw Error(ErrorKind::Usage, path + ": its dumps would overwrite the bind's (" + stem +
+                                        ".patch*); rename the frame");
+    const auto [it, fresh] = seen.emplace(stem, path);
+    if (!fresh)
+      throw Error(ErrorKind::Usage, path + " and " + it->second +
+                                        ": their dumps would have the same names (" + stem +
+                                        ".patch*); rename one");
+  }
+}
+
+void write_bind_dumps(const std::string& dump_dir, const std::string& bind_path,
+                      const BindSetup& setup, const Positions3& bind_positions,
+                      const DumpOptions& options) {
+  make_dir(dump_dir);
+  const int size = geometry_size(setup, options);
+  for (size_t k = 0; k < setup.patches.size(); ++k) {
+    const PatchNet& patch = setup.patches[k];
+    if (!has_net(patch)) continue;
+    const int index = static_cast<int>(k);
+    const IdImage ids = id_raster(patch.bind_net, patch.triangles, setup.options.lookup_size);
+    write_id(dump_path(dump_dir, "bind", index, "id.exr"), ids, bind_path, patch, index, "bind");
+    const GeometryImage geometry =
+        geometry_image(patch.bind_net, patch.triangles, local_points(patch, bind_positions), size);
+    write_geometry(dump_path(dump_dir, "bind", index, "geom.exr"), geometry, nullptr, bind_path,
+                   patch, index, "bind");
+  }
+}
+
+void write_frame_dumps(const std::string& dump_dir, const std::string& frame_path,
+                       const BindSetup& setup, const Positions3& frame_positions,
+                       const std::vector<PatchFrameReport>& reports, const DumpOptions& options) {
+  SKINSLIDE_CHECK(reports.size() == setup.patches.size(), "one report per patch");
+  make_dir(dump_dir);
+  const std::string stem = dump_stem(frame_path);
+  const int size = geometry_size(setup, options);
+  for (size_t k = 0; k < setup.patches.size(); ++k) {
+    const PatchNet& patch = setup.patches[k];
+    const PatchFrameReport& report = reports[k];
+    if (!has_net(patch) || report.frame_net.size() != patch.bind_net.size()) continue;
+    const int index = static_cast<int>(k);
+    SKINSLIDE_CHECK(report.id_image.size > 0,
+                    "frame dumps need the ID image: slide_frame(..., keep_id_image = true)");
+    write_id(dump_path(dump_dir, stem, index, "id.exr"), report.id_image, frame_path, patch, index,
+             "frame");
+    const GeometryImage geometry = geometry_image(report.frame_net, patch.triangles,
+                                                  local_points(patch, frame_positions), size);
+    const SlideField slide = slide_field(patch.bind_net, report.frame_net, patch.triangles, size);
+    write_geometry(dump_path(dump_dir, stem, index, "geom.exr"), geometry, &slide, frame_path,
+                   patch, index, "frame");
+  }
+}
+
+void write_previews(const std::string& preview_dir, const std::string& frame_path,
+                    const BindSetup& setup, const std::vector<PatchFrameReport>& reports,
+                    const DumpOptions& options) {
+  SKINSLIDE_CHECK(reports.size() == setup.patches.size(), "one report per patch");
+  make_dir(preview_dir);
+  const std::string stem = dump_stem(frame_path);
+  for (size_t k = 0; k < setup.patches.size(); ++k) {
+    const PatchNet& patch = setup.patches[k];
+    const PatchFrameReport& report = reports[k];
+    if (!has_net(patch) || report.frame_net.size() != patch.bind_net.size()) continue;
+    const RgbImage image = preview_image(patch.bind_net, report.frame_net, patch.bars,
+                                         patch.free_vertices, options.preview_size);
+    write_png(dump_path(preview_dir, stem, static_cast<int>(k), "png"), image.width, image.height,
+              image.rgb);
+  }
+}
+
+}  // namespace skinslide

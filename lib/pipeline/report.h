@@ -1,0 +1,52 @@
+// The run report (`--report FILE.json`): what happened to every patch in every frame, as JSON
+// that diffs. Keys in a fixed order, numbers as the shortest text that reads back to the same
+// double (std::to_chars), frames in the order given. Timings are the only numbers that change
+// from run to run; they sit in one top-level "timings" object (omitted on request) so a diff can
+// drop it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pipeline/bind_setup.h"
+#include "pipeline/slide_frame.h"
+
+namespace skinslide {
+
+/// One frame of the run, in the order of the command line.
+struct ReportFrame {
+  std::string path;                       ///< the frame's file
+  std::string output;                     ///< where the slid frame was written
+  std::vector<PatchFrameReport> patches;  ///< parallel to BindSetup::patches (nets not needed)
+  double read_seconds = 0;                ///< reading and checking the frame (posing a rig frame)
+  double write_seconds = 0;               ///< writing the slid frame
+};
+
+/// What the report says about a run besides the frames.
+struct RunReport {
+  std::string bind;                 ///< the bind's file
+  std::vector<std::string> patch_files;
+  std::string weights;              ///< where the slide weights came from; empty = none
+  double strength = 1;
+  std::string pins;                 ///< the pin file; empty = none
+  Index pins_requested = 0;         ///< distinct ids in the pin file
+  std::vector<ReportFrame> frames;
+  bool timings = true;              ///< write the "timings" object
+  double bind_seconds = 0;          ///< reading the bind and patch files, building the set-up
+  double wall_seconds = 0;          ///< the whole run
+};
+
+/// The report as JSON text (UTF-8, 2-space indent, final newline). Layout:
+/// { "skinslide": version, "bind", "patch_files", "options": {density, holes, q_floor,
+///   frame_solver, cg_tolerance, cg_max_iterations, locate, lookup_size}, "controls": {weights, strength, pins,
+///   pins_requested, pins_ignored}, "patches": [per patch: faces, vertices, free, pinned, loops,
+///   outer_loop_start, outer_loop_chosen, corners, corners_chosen, skipped, bind_net_flips],
+///   "frames": [{path, output, patches: [{cg_iterations, cg_residual, direct_solve,
+///   located_in_image, located_fallback, frame_net_flips, moved, max_slide, mean_slide,
+///   spread_frame, spread_slid}]}], "totals": {frames, moved, cg_iterations, direct_solves,
+///   fallbacks, frame_net_flips, max_slide}, "timings": {seconds per stage summed over frames:
+///   bind_setup, read, solve, locate, transfer, write; wall} }
+/// Skipped patches report zeros. Vertex ids are mesh ids.
+std::string report_json(const BindSetup& setup, const RunReport& run);
+
+}  // namespace skinslide

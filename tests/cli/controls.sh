@@ -1,0 +1,182 @@
+#!/usr/bin/env bash
+# End-to-end checks of the controls (README "Controls"): slide weights, pins, corners and outer
+# loops, the JSON report, the config file, the progress output, and their errors.
+# Usage: SKINSLIDE=path/to/skinslide tests/cli/controls.sh
+set -u
+source "$(dirname "$0")/harness.sh"
+py=/usr/bin/python3
+
+expect_exit() {  # expect_exit CODE PATTERN ARGS...: exit code, and stderr holds "skinslide: error: ...PATTERN"
+  local code=$1 pattern=$2
+  shift 2
+  "$bin" -q "$@" 2>"$tmp/stderr"
+  local rc=$?
+  if [ "$rc" -ne "$code" ]; then
+    echo "exit $rc, expected $code: $(cat "$tmp/stderr")" >&2
+    return 1
+  fi
+  grep -qF "skinslide: error: " "$tmp/stderr" && grep -qF -- "$pattern" "$tmp/stderr" ||
+    { echo "stderr lacks '$pattern': $(cat "$tmp/stderr")" >&2; return 1; }
+}
+
+same_frames() {  # same_frames DIR_A DIR_B: every file byte-identical
+  diff -r "$1" "$2" >/dev/null
+}
+
+cd "$root"
+elbow=(--patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/*.obj)
+nv=$(grep -c '^v ' data/elbow/bind.obj)
+"$bin" -q "${elbow[@]}" -o "$tmp/plain"
+
+# --- report -------------------------------------------------------------------------------------
+"$bin" -q -j 1 --report "$tmp/r1.json" "${elbow[@]}" -o "$tmp/r1"
+"$bin" -q -j 2 --report "$tmp/r2.json" "${elbow[@]}" -o "$tmp/r2"
+check "the report is JSON with the documented keys" $py - "$tmp/r1.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
+                   "totals", "timings"], list(r)
+assert [f["path"] for f in r["frames"]] == ["data/elbow/frames/elbow.000%d.obj" % k for k in range(1, 6)]
+keys = ["cg_iterations", "cg_residual", "direct_solve", "located_in_image", "located_fallback",
+        "frame_net_flips", "moved", "max_slide", "mean_slide", "spread_frame", "spread_slid"]
+for f in r["frames"]:
+    assert list(f["patches"][0]) == keys, list(f["patches"][0])
+last = r["frames"][-1]["patches"][0]
+assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and not last["direct_solve"]
+assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
+assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 5 * 288
+assert r["options"]["density"] == "inverse" and r["patches"][0]["corners"] == [352, 360, 368, 376]
+PY
+check "reports of --threads 1 and 2 differ only in timings" $py - "$tmp/r1.json" "$tmp/r2.json" "$tmp/r1" "$tmp/r2" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for r, d in ((a, sys.argv[3]), (b, sys.argv[4])):
+    del r["timings"]
+    for f in r["frames"]:
+        assert f["output"].startswith(d)
+        f["output"] = f["output"][len(d):]
+assert a == b
+PY
+"$bin" -q -j 1 --report "$tmp/n1.json" --report-no-timings "${elbow[@]}" -o "$tmp/n"
+"$bin" -q -j 2 --report "$tmp/n2.json" --report-no-timings "${elbow[@]}" -o "$tmp/n"
+check "--report-no-timings gives identical bytes across thread counts" cmp "$tmp/n1.json" "$tmp/n2.json"
+check "--report-no-timings leaves the timings out" bash -c "! grep -q timings '$tmp/n1.json'"
+check "a report does not change the slid frames" same_frames "$tmp/plain" "$tmp/r1"
+
+# --- weights ------------------------------------------------------------------------------------
+$py -c "print('# all zero'); [print(0) for _ in range($nv)]" >"$tmp/zero.txt"
+"$bin" -q --weights "$tmp/zero.txt" "${elbow[@]}" -o "$tmp/w0"
+check "weights 0 leave every frame byte-identical" same_frames data/elbow/frames "$tmp/w0"
+$py -c "[print(v, 1) for v in range($nv)]" >"$tmp/one.txt"
+"$bin" -q --weights "$tmp/one.txt" "${elbow[@]}" -o "$tmp/w1"
+check "weights 1 (index weight pairs) give the full slide" same_frames "$tmp/plain" "$tmp/w1"
+"$bin" -q --strength 0 "${elbow[@]}" -o "$tmp/s0"
+check "--strength 0 leaves every frame byte-identical" same_frames data/elbow/frames "$tmp/s0"
+"$bin" -q --strength 0.5 "${elbow[@]}" -o "$tmp/s05"
+check "--strength 0.5 puts slid vertices at the midpoint" $py - data/elbow/frames/elbow.0005.obj \
+  "$tmp/plain/elbow.0005.obj" "$tmp/s05/elbow.0005.obj" <<'PY'
+import sys
+def verts(p):
+    return [[float(x) for x in l.split()[1:4]] for l in open(p) if l.startswith("v ")]
+f, s, h = (verts(p) for p in sys.argv[1:4])
+moved = 0
+for a, b, c in zip(f, s, h):
+    for k in range(3):
+        assert abs(c[k] - (a[k] + b[k]) / 2) < 1e-12, (a, b, c)
+    moved += a != b
+assert moved > 200
+PY
+# Vertex colours: green 0 (nothing slides), red 1 (everything slides).
+$py - data/elbow/bind.obj "$tmp/coloured.obj" <<'PY'
+import sys
+with open(sys.argv[2], "w") as out:
+    for line in open(sys.argv[1]):
+        out.write(line.rstrip("\n") + " 1 0 0.5\n" if line.startswith("v ") else line)
+PY
+"$bin" -q --weights-from-obj-color g --patch data/elbow/patch.txt "$tmp/coloured.obj" data/elbow/frames/*.obj -o "$tmp/cg"
+check "weights from a colour channel of 0 leave the frames" same_frames data/elbow/frames "$tmp/cg"
+"$bin" -q --weights-from-obj-color r --patch data/elbow/patch.txt "$tmp/coloured.obj" data/elbow/frames/*.obj -o "$tmp/cr"
+check "weights from a colour channel of 1 give the full slide" same_frames "$tmp/plain" "$tmp/cr"
+
+# --- pins ---------------------------------------------------------------------------------------
+printf '# pins\n500-502\nelbow.vtx[600]\n0  # outside the patch: ignored\n' >"$tmp/pins.txt"
+"$bin" -q --pin "$tmp/pins.txt" --report "$tmp/pins.json" "${elbow[@]}" -o "$tmp/pin"
+check "pinned vertices keep the frame's v lines; their neighbours slide" $py - "$tmp/pin" "$tmp/pins.json" <<'PY'
+import json, os, sys
+out = sys.argv[1]
+for name in sorted(os.listdir(out)):
+    f = [l for l in open("data/elbow/frames/" + name) if l.startswith("v ")]
+    s = [l for l in open(os.path.join(out, name)) if l.startswith("v ")]
+    for v in (500, 501, 502, 600):
+        assert f[v] == s[v], (name, v)
+    if name >= "elbow.0003":
+        assert f[503] != s[503] and f[468] != s[468], name
+r = json.load(open(sys.argv[2]))
+assert r["controls"]["pins_requested"] == 5 and r["controls"]["pins_ignored"] == 1
+assert r["patches"][0]["pinned"] == 4 and r["patches"][0]["free"] == 284
+PY
+
+# --- corners and outer loop ---------------------------------------------------------------------
+"$bin" -q --corners 356,364,372,380 --report "$tmp/c.json" "${elbow[@]}" -o "$tmp/corners"
+check "--corners sets the square's corners" $py -c "
+import json; p = json.load(open('$tmp/c.json'))['patches'][0]
+assert p['corners'] == [356, 364, 372, 380] and p['corners_chosen']"
+check "--corners changes the slide" bash -c "! diff -q '$tmp/plain' '$tmp/corners' >/dev/null"
+"$bin" -q --outer-loop-vertex 680 --report "$tmp/o.json" "${elbow[@]}" -o "$tmp/outer"
+check "--outer-loop-vertex picks the loop through it" $py -c "
+import json; r = json.load(open('$tmp/o.json')); p = r['patches'][0]
+assert p['outer_loop_start'] == 672 and p['outer_loop_chosen'] and r['totals']['frame_net_flips'] == 0"
+
+# --- config file --------------------------------------------------------------------------------
+cat >"$tmp/job.toml" <<TOML
+# a farm job's options
+density = "paper"
+threads = 2
+patch = ["data/elbow/patch.txt"]
+report = "$tmp/cfg.json"
+report-no-timings = true
+TOML
+"$bin" -q --config "$tmp/job.toml" data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/cfg"
+check "config file values apply" $py -c "
+import json; r = json.load(open('$tmp/cfg.json'))
+assert r['options']['density'] == 'paper' and 'timings' not in r"
+"$bin" -q --config "$tmp/job.toml" --density uniform data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/cfg"
+check "the command line overrides the config file" $py -c "
+import json; assert json.load(open('$tmp/cfg.json'))['options']['density'] == 'uniform'"
+check "a missing config file is a usage error (2)" expect_exit 2 "--config" --config "$tmp/none.toml" "${elbow[@]}" -o "$tmp/e0"
+
+# --- progress -----------------------------------------------------------------------------------
+"$bin" "${elbow[@]}" -o "$tmp/log" 2>"$tmp/log.txt"
+check "off a terminal: one line per frame, no progress bar" bash -c \
+  "[ \$(wc -l <'$tmp/log.txt') -eq 7 ] && ! grep -q 'frames/s' '$tmp/log.txt'"
+if command -v script >/dev/null; then
+  script -qec "'$bin' -j 1 ${elbow[*]} -o '$tmp/tty'" /dev/null >"$tmp/tty.txt" 2>&1
+  check "on a terminal: frames done, frames per second and time left" \
+    grep -qE '\] [0-9]+/5 frames +[0-9.]+ frames/s +[0-9]+ s left' "$tmp/tty.txt"
+fi
+
+# --- errors -------------------------------------------------------------------------------------
+printf '0\n0.5\nhalf\n' >"$tmp/bad.txt"
+check "a bad weight is an input error naming file:line (3)" expect_exit 3 "$tmp/bad.txt:3: 'half' is not a number" \
+  --weights "$tmp/bad.txt" "${elbow[@]}" -o "$tmp/e1"
+check "a bad weights file writes nothing" bash -c "[ ! -e '$tmp/e1' ] || [ -z \"\$(ls -A '$tmp/e1')\" ]"
+printf '5\n2000\n' >"$tmp/badpins.txt"
+check "a pin past the last vertex is an input error (3)" expect_exit 3 "$tmp/badpins.txt:2: vertex 2000 is out of range" \
+  --pin "$tmp/badpins.txt" "${elbow[@]}" -o "$tmp/e2"
+check "corners off the loop name the vertex (2)" expect_exit 2 "vertex 700 is not on the boundary loop through vertex 356" \
+  --corners 356,364,372,700 "${elbow[@]}" -o "$tmp/e3"
+check "corners against the walk say the walking order (2)" expect_exit 2 "walking from 380 the loop meets them as 380,356,364,372" \
+  --corners 380,372,364,356 "${elbow[@]}" -o "$tmp/e4"
+check "three corners are a usage error (2)" expect_exit 2 "expected four vertex ids" --corners 1,2,3 "${elbow[@]}" -o "$tmp/e5"
+check "an outer-loop vertex inside the patch is a usage error (2)" expect_exit 2 "vertex 400 is not on a boundary loop" \
+  --outer-loop-vertex 400 "${elbow[@]}" -o "$tmp/e6"
+check "--weights and --weights-from-obj-color conflict (2)" expect_exit 2 "excludes" \
+  --weights "$tmp/zero.txt" --weights-from-obj-color r "${elbow[@]}" -o "$tmp/e7"
+check "colour weights need colours (3)" expect_exit 3 "data/elbow/bind.obj:3: vertex 0 has no colour" \
+  --weights-from-obj-color r "${elbow[@]}" -o "$tmp/e8"
+check "--report-no-timings needs --report (2)" expect_exit 2 "requires --report" --report-no-timings "${elbow[@]}" -o "$tmp/e9"
+check "a report over an input is refused (2)" expect_exit 2 "would overwrite input" \
+  --report data/elbow/patch.txt "${elbow[@]}" -o "$tmp/e10"
+check "--strength below 0 is a usage error (2)" expect_exit 2 "strength" --strength -1 "${elbow[@]}" -o "$tmp/e11"
+
+finish controls

@@ -1,0 +1,74 @@
+// Shared by the glTF tests: temporary folders, the Khronos validator, the JSON comparison.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace skinslide::testing {
+
+inline std::string shared_gltf(const std::string& name) {
+  return std::string(SKINSLIDE_SHARED_DIR) + "/data/gltf/" + name;
+}
+
+/// A fresh, empty folder under the system's temp folder, named after the running test.
+inline std::filesystem::path temp_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  auto dir = std::filesystem::temp_directory_path() / "skinslide_tests" /
+             (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+struct CommandResult {
+  int status = -1;  ///< exit status, -1 when it could not be run
+  std::string output;
+};
+
+inline CommandResult run_command(const std::string& command) {
+  CommandResult r;
+  FILE* p = popen((command + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int s = pclose(p);
+  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+  return r;
+}
+
+inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+/// Runs the Khronos glTF validator (scripts/gltf_validate.sh, which installs it when missing) on
+/// `files`. Fails the test on any validation error; skips it, saying why, only when the
+/// validator cannot be installed or run (no node, npm unreachable).
+#define SKINSLIDE_EXPECT_VALID_GLTF(files)                                                  \
+  do {                                                                                      \
+    std::string cmd_ = "bash " SKINSLIDE_SOURCE_DIR "/scripts/gltf_validate.sh";            \
+    for (const std::string& f_ : (files)) cmd_ += " " + ::skinslide::testing::quoted(f_);   \
+    const auto r_ = ::skinslide::testing::run_command(cmd_);                                \
+    if (r_.status == 2 || r_.status == -1)                                                  \
+      GTEST_SKIP() << "the Khronos glTF validator is unavailable (node/npm unreachable):\n" \
+                   << r_.output;                                                            \
+    EXPECT_EQ(r_.status, 0) << r_.output;                                                   \
+  } while (0)
+
+/// tests/io/gltf_compare.py: same JSON apart from schema defaults (and min/max of `edited`
+/// accessors), and, when nothing is edited, the same buffer bytes. Returns its report.
+inline CommandResult compare_gltf(const std::string& a, const std::string& b,
+                                  const std::vector<int>& edited = {}) {
+  std::string cmd = "python3 " SKINSLIDE_SOURCE_DIR "/tests/io/gltf_compare.py " + quoted(a) +
+                    " " + quoted(b);
+  if (!edited.empty()) {
+    cmd += " --edited ";
+    for (size_t i = 0; i < edited.size(); ++i) cmd += (i ? "," : "") + std::to_string(edited[i]);
+  }
+  return run_command(cmd);
+}
+
+}  // namespace skinslide::testing
