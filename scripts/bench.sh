@@ -3,7 +3,8 @@
 # surface with three holes, bent at a joint by two-bone skinning; tests/bench/bench_case.cpp)
 # and the ICT face of ../shared/data (neutral = bind, four expressions = frames).
 #
-#   scripts/bench.sh [-s "10000 100000 1000000"] [-f FRAMES] [-F FRAMES_1M] [-r RUNS] [--no-ict]
+#   scripts/bench.sh [-s "10000 100000 1000000"] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict]
+#   (FRAMES frames per case, default 20; FRAMES_BIG, default 4, from 400k vertices on)
 #
 # Per case, medians over RUNS runs:
 #   - stages (CPU time of one thread, tests/bench/bench_stages.cpp): bind read, bind set-up, and
@@ -16,17 +17,17 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 sizes="10000 100000 1000000"
 frames=20
-frames_1m=4
+frames_big=4
 runs=3
 ict=1
 while [ $# -gt 0 ]; do
   case $1 in
     -s) sizes=$2; shift 2 ;;
     -f) frames=$2; shift 2 ;;
-    -F) frames_1m=$2; shift 2 ;;
+    -F) frames_big=$2; shift 2 ;;
     -r) runs=$2; shift 2 ;;
     --no-ict) ict=0; shift ;;
-    *) echo "usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_1M] [-r RUNS] [--no-ict]" >&2; exit 2 ;;
+    *) echo "usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict]" >&2; exit 2 ;;
   esac
 done
 
@@ -78,7 +79,7 @@ bench() {
 names=()
 for n in $sizes; do
   f=$frames
-  [ "$n" -ge 1000000 ] && f=$frames_1m
+  [ "$n" -ge 400000 ] && f=$frames_big
   dir=$work/case$n
   [ -f "$dir/bind.obj" ] && [ "$(ls "$dir/frames" | wc -l)" -eq "$f" ] || {
     rm -rf "$dir"
