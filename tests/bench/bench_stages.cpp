@@ -1,24 +1,19 @@
-// Per-stage timings of skinslide's pipeline, calling the library stages directly, and the I/O
-// floor (frames read and written unchanged by the same reader and writer).
+// Per-stage timings of skinslide's pipeline, calling the library stages directly.
 //
 //   skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] [-l walk|image] -o DIR BIND PATCH FRAME...
 //       bind read and set-up, then per frame: read (+ topology check), frame net (force
-//       densities + solve, with CG iterations), ID image, locate, transfer, write; plus
-//       slide_frame as a whole. Prints "name median_ms" lines (medians over frames x repeats).
-//   skinslide_bench_stages --floor [-j THREADS] -o DIR BIND FRAME...
-//       reads the bind and every frame and writes each frame unchanged to DIR, THREADS frames at
-//       a time like the command: the I/O floor of a run.
+//       densities + solve, with CG iterations), ID image (-l image), locate, transfer, write;
+//       plus slide_frame as a whole. Prints "name median_ms" lines (medians over frames x
+//       repeats). The I/O floor of a run is the command's own --no-slide.
 // Stage times are the thread's CPU time in milliseconds.
 
 #include <algorithm>
-#include <atomic>
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "core/error.h"
@@ -145,60 +140,34 @@ int stages(int repeat, const SlideOptions& options, const std::string& out_dir,
   return 0;
 }
 
-int floor_run(unsigned threads, const std::string& out_dir, const std::vector<std::string>& args) {
-  const MeshFile bind = read_mesh_file(args[0]);
-  const std::vector<std::string> frames(args.begin() + 1, args.end());
-  fs::create_directories(out_dir);
-  std::atomic<size_t> next{0};
-  auto worker = [&] {
-    for (size_t i; (i = next++) < frames.size();) {
-      const MeshFile frame = read_mesh_file(frames[i]);
-      require_same_topology(bind, frame);
-      write_slid_mesh_file(frame, SlidVertices{},
-                           (fs::path(out_dir) / fs::path(frames[i]).filename()).string());
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < std::max(1u, threads); ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
-  return 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  int repeat = 1;
-  unsigned threads = 1;
-  bool floor = false;
-  std::string out_dir;
-  SlideOptions options;
-  std::vector<std::string> args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--floor")
-      floor = true;
-    else if (a == "-r" && i + 1 < argc)
-      repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "-j" && i + 1 < argc)
-      threads = static_cast<unsigned>(std::atoi(argv[++i]));
-    else if (a == "-l" && i + 1 < argc)
-      options.locate = parse_locate(argv[++i]);
-    else if (a == "-s" && i + 1 < argc)
-      options.frame_solver = parse_frame_solver(argv[++i]);
-    else if (a == "-o" && i + 1 < argc)
-      out_dir = argv[++i];
-    else
-      args.push_back(a);
-  }
-  if (out_dir.empty() || args.size() < (floor ? 2u : 3u)) {
-    std::fprintf(stderr,
-                 "usage: skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] [-l walk|image] -o "
-                 "DIR BIND PATCH FRAME...\n"
-                 "       skinslide_bench_stages --floor [-j THREADS] -o DIR BIND FRAME...\n");
-    return 2;
-  }
   try {
-    return floor ? floor_run(threads, out_dir, args) : stages(repeat, options, out_dir, args);
+    int repeat = 1;
+    std::string out_dir;
+    SlideOptions options;
+    std::vector<std::string> args;
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "-r" && i + 1 < argc)
+        repeat = std::max(1, std::atoi(argv[++i]));
+      else if (a == "-l" && i + 1 < argc)
+        options.locate = parse_locate(argv[++i]);
+      else if (a == "-s" && i + 1 < argc)
+        options.frame_solver = parse_frame_solver(argv[++i]);
+      else if (a == "-o" && i + 1 < argc)
+        out_dir = argv[++i];
+      else
+        args.push_back(a);
+    }
+    if (out_dir.empty() || args.size() < 3u) {
+      std::fprintf(stderr,
+                   "usage: skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] [-l walk|image] -o "
+                   "DIR BIND PATCH FRAME...\n");
+      return 2;
+    }
+    return stages(repeat, options, out_dir, args);
   } catch (const Error& e) {
     std::fprintf(stderr, "skinslide_bench_stages: error: %s\n", e.what());
     return exit_code(e.kind());
