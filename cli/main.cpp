@@ -25,6 +25,7 @@
 #include "core/version.h"
 #include "io/atomic_write.h"
 #include "io/gltf.h"
+#include "io/gltf_weights.h"
 #include "io/mesh_file.h"
 #include "io/number_format.h"
 #include "io/obj_write.h"
@@ -72,6 +73,7 @@ struct CliOptions {
   // Controls (README "Controls")
   std::string weights;
   std::string weights_color;
+  std::string weights_attribute;  // glTF vertex attribute of the bind's mesh
   double strength = 1;
   std::string pin;
   std::vector<std::string> corners;
@@ -115,6 +117,9 @@ SlideControls slide_controls(const CliOptions& o, const MeshFile& bind, RunRepor
     const int channel = o.weights_color == "r" ? 0 : o.weights_color == "g" ? 1 : 2;
     c.weight = obj_color_weights(o.bind, *bind.obj, channel);
     report.weights = o.bind + " (vertex colour " + o.weights_color + ")";
+  } else if (!o.weights_attribute.empty()) {
+    c.weight = gltf_attribute_weights(bind, o.weights_attribute);
+    report.weights = o.bind + " (glTF attribute " + o.weights_attribute + ")";
   }
   c.strength = o.strength;
   report.strength = o.strength;
@@ -589,6 +594,15 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"r", "g", "b"}))
       ->excludes(weights)
       ->group(controls);
+  auto* weights_attribute =
+      app.add_option("--weights-from-gltf-attribute", o.weights_attribute,
+                     "Slide weights from this vertex attribute of the bind glTF's mesh (e.g. "
+                     "_SLIDE_WEIGHT): SCALAR float, or normalized unsigned byte/short, on every "
+                     "triangle primitive; a welded vertex takes its first raw copy's weight")
+          ->type_name("NAME")
+          ->excludes(weights)
+          ->excludes("--weights-from-obj-color")
+          ->group(controls);
   app.add_option("--strength", o.strength,
                  "Multiplies every slide weight; the product is clamped to [0,1]")
       ->capture_default_str()
@@ -632,12 +646,17 @@ int main(int argc, char** argv) {
           "copies frame files only: not with --animation, --report, --dump or --preview");
     if (!o.rig && o.frames.empty())
       throw CLI::ValidationError("FRAME...", "give at least one FRAME, or --animation with a rigged glTF BIND");
-    if (o.rig) {
-      std::string ext = fs::path(o.bind).extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-      if (ext != ".gltf" && ext != ".glb")
-        throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + o.bind);
-    }
+    std::string ext = fs::path(o.bind).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    const bool gltf_bind = ext == ".gltf" || ext == ".glb";
+    if (o.rig && !gltf_bind)
+      throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + o.bind);
+    if (weights_attribute->count() > 0 && o.weights_attribute.empty())
+      throw CLI::ValidationError("--weights-from-gltf-attribute", "needs an attribute name");
+    if (!o.weights_attribute.empty() && !gltf_bind)
+      throw CLI::ValidationError("--weights-from-gltf-attribute",
+                                 "needs a .gltf or .glb BIND, not " + o.bind);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::fprintf(stderr, "skinslide: error: %s\nRun with --help for the options.\n", e.what());
