@@ -25,6 +25,7 @@
 #include "core/version.h"
 #include "io/atomic_write.h"
 #include "io/gltf.h"
+#include "io/gltf_weights.h"
 #include "io/mesh_file.h"
 #include "io/number_format.h"
 #include "io/obj_write.h"
@@ -55,14 +56,17 @@ struct CliOptions {
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
+  std::string frame_solver = "cholesky";
   double cg_tolerance = 1e-12;
   int cg_max_iterations = 2000;
+  std::string locate = "walk";
   int lookup_size = 1024;
   unsigned threads = 0;
   std::string frame_ranges;  // --frames: empty = every frame
   bool keep_going = false;
   bool quiet = false;
   bool verbose = false;
+  bool no_slide = false;
   std::string mesh;       // glTF: which mesh (name or index); empty = the only one
   bool rig = false;       // --animation given: the frames are BIND posed by its skin
   std::string animation;  // clip name or index
@@ -72,6 +76,7 @@ struct CliOptions {
   // Controls (README "Controls")
   std::string weights;
   std::string weights_color;
+  std::string weights_attribute;  // glTF vertex attribute of the bind's mesh
   double strength = 1;
   std::string pin;
   std::vector<std::string> corners;
@@ -115,6 +120,9 @@ SlideControls slide_controls(const CliOptions& o, const MeshFile& bind, RunRepor
     const int channel = o.weights_color == "r" ? 0 : o.weights_color == "g" ? 1 : 2;
     c.weight = obj_color_weights(o.bind, *bind.obj, channel);
     report.weights = o.bind + " (vertex colour " + o.weights_color + ")";
+  } else if (!o.weights_attribute.empty()) {
+    c.weight = gltf_attribute_weights(bind, o.weights_attribute);
+    report.weights = o.bind + " (glTF attribute " + o.weights_attribute + ")";
   }
   c.strength = o.strength;
   report.strength = o.strength;
@@ -218,8 +226,10 @@ SlideOptions slide_options(const CliOptions& o) {
   s.density = parse_density(o.density);
   s.holes = parse_holes(o.holes);
   s.q_floor = o.q_floor;
+  s.frame_solver = parse_frame_solver(o.frame_solver);
   s.cg_tolerance = o.cg_tolerance;
   s.cg_max_iterations = o.cg_max_iterations;
+  s.locate = parse_locate(o.locate);
   s.lookup_size = o.lookup_size;
   return s;
 }
@@ -264,6 +274,16 @@ void record_frame(ReportFrame& record, const std::string& source, const std::str
   }
 }
 
+// slide_frame, with the frame named in its errors.
+FrameResult slide_named(const BindSetup& setup, const CliOptions& o, const Positions3& positions,
+                        const std::string& name) {
+  try {
+    return slide_frame(setup, positions, /*keep_id_image=*/!o.dump_dir.empty());
+  } catch (const Error& e) {
+    throw Error(e.kind(), name + ": " + e.what());
+  }
+}
+
 // A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
 // so the slid frame appears only once everything of its frame is written.
 void write_frame_pictures(const BindSetup& setup, const CliOptions& o, const std::string& named_after,
@@ -284,12 +304,11 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
   const MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
   const double read_seconds = seconds_since(t0);
-  FrameResult result;
-  try {
-    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
-  } catch (const Error& e) {
-    throw Error(e.kind(), frame_path + ": " + e.what());
+  if (o.no_slide) {
+    write_slid_mesh_file(frame, SlidVertices{}, out_path);
+    return {"skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path};
   }
+  const FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
   write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
   t0 = std::chrono::steady_clock::now();
   write_slid_mesh_file(frame, result.slid, out_path);
@@ -305,12 +324,7 @@ std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& c
   auto t0 = std::chrono::steady_clock::now();
   const MeshFile frame = rig_frame(character, clip, k);
   const double pose_seconds = seconds_since(t0);
-  FrameResult result;
-  try {
-    result = slide_frame(setup, frame.mesh.positions, /*keep_id_image=*/!o.dump_dir.empty());
-  } catch (const Error& e) {
-    throw Error(e.kind(), label + ": " + e.what());
-  }
+  const FrameResult result = slide_named(setup, o, frame.mesh.positions, label);
   write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
   t0 = std::chrono::steady_clock::now();
   if (o.format == "obj")
@@ -327,22 +341,26 @@ std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& 
                                       const std::string& out_path) {
   const FrameSummary s = summarise(result);
   std::vector<std::string> lines;
+  const bool cholesky = setup.options.frame_solver == FrameSolver::Cholesky;
+  const auto solver = [&](int iterations) {
+    return cholesky ? std::string("Cholesky") : "CG " + std::to_string(iterations) + " it";
+  };
   lines.push_back("skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
-                  " patches, CG " + std::to_string(s.cg_iterations) + " it, max slide " +
-                  fmt(s.max_slide) + ", " + std::to_string(s.fallbacks) + " fallbacks -> " + out_path);
+                  " patches, " + solver(s.cg_iterations) + ", max slide " + fmt(s.max_slide) +
+                  ", " + std::to_string(s.fallbacks) + " fallbacks -> " + out_path);
   if (o.verbose)
     for (size_t p = 0; p < result.patches.size(); ++p) {
       const PatchFrameReport& r = result.patches[p];
       lines.push_back("  patch " + std::to_string(p) + ": " +
-                      (setup.patches[p].skipped ? std::string("skipped (all vertices on loops)")
-                                                : "CG " + std::to_string(r.cg_iterations) +
-                                                      " it, residual " + fmt(r.cg_residual) +
-                                                      (r.direct_solve ? " (solved directly)" : "") +
-                                                      ", located " + std::to_string(r.located_in_image) +
-                                                      " + " + std::to_string(r.located_fallback) +
-                                                      " fallback, net flips " + std::to_string(r.frame_net_flips) +
-                                                      ", slide max " + fmt(r.max_slide) + " mean " +
-                                                      fmt(r.mean_slide)));
+                      (setup.patches[p].skipped
+                           ? std::string("skipped (all vertices on loops)")
+                           : solver(r.cg_iterations) +
+                                 (cholesky ? "" : ", residual " + fmt(r.cg_residual)) +
+                                 (r.direct_solve ? " (solved directly)" : "") + ", located " +
+                                 std::to_string(r.located_in_image) + " + " +
+                                 std::to_string(r.located_fallback) + " fallback, net flips " +
+                                 std::to_string(r.frame_net_flips) + ", slide max " +
+                                 fmt(r.max_slide) + " mean " + fmt(r.mean_slide)));
     }
   return lines;
 }
@@ -382,13 +400,19 @@ int run(const CliOptions& o) {
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
   RunReport report;
   const SlideControls controls = slide_controls(o, bind, report);
-  const BindSetup setup = bind_setup(bind.mesh, selections, options, controls, [&](Index f) {
-    return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
-  });
+  // --no-slide measures the I/O floor of a run: no bind set-up, frames copied unchanged.
+  const BindSetup setup =
+      o.no_slide ? BindSetup{} : bind_setup(bind.mesh, selections, options, controls, [&](Index f) {
+        return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
+      });
   report.bind_seconds = seconds_since(t_run);
   size_t sliding = 0;
   for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
-  if (verbosity != cli::Verbosity::Quiet)
+  if (o.no_slide && verbosity != cli::Verbosity::Quiet)
+    std::fprintf(stderr,
+                 "skinslide: %s: --no-slide: frames are read, checked and written unchanged\n",
+                 o.bind.c_str());
+  else if (verbosity != cli::Verbosity::Quiet)
     std::fprintf(stderr, "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
                  o.bind.c_str(), setup.patches.size(), sliding, to_string(options.density).c_str(),
                  to_string(options.holes).c_str());
@@ -467,7 +491,8 @@ int run(const CliOptions& o) {
     write_file_atomic(o.report, report_json(setup, report));
   }
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
-    std::fprintf(stderr, "skinslide: %zu frames slid%s in %.2f s -> %s\n", count - failed,
+    std::fprintf(stderr, "skinslide: %zu frames %s%s in %.2f s -> %s\n", count - failed,
+                 o.no_slide ? "copied" : "slid",
                  failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
                  progress.elapsed_seconds(), o.output.c_str());
   if (first) return exit_code(first->kind());
@@ -573,6 +598,13 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1e-12, 1.0))
       ->group(method);
+  app.add_option(
+         "--frame-solver", o.frame_solver,
+         "Frame nets: cholesky (sparse, analysis reused by every frame) or cg (warm-started "
+         "conjugate gradient; the same nets within --cg-tolerance)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cholesky", "cg"}))
+      ->group(method);
   app.add_option("--cg-tolerance", o.cg_tolerance, "Frame net CG stops at |r| <= tol |b|")
       ->capture_default_str()
       ->check(CLI::Range(1e-16, 1e-2))
@@ -581,6 +613,12 @@ int main(int argc, char** argv) {
                  "Past this the frame net is solved directly (counted)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000))
+      ->group(method);
+  app.add_option("--locate", o.locate,
+                 "Finding bind positions in frame nets: walk (from each vertex's own triangles) or "
+                 "image (a triangle-ID image, --lookup-size)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"walk", "image"}))
       ->group(method);
   app.add_option("--lookup-size", o.lookup_size, "Side of the triangle-ID lookup image, pixels")
       ->capture_default_str()
@@ -600,6 +638,10 @@ int main(int argc, char** argv) {
   app.add_flag("--keep-going", o.keep_going,
                "Write every good frame and name every bad one, instead of stopping at the first "
                "(exit code: the first bad frame's)")
+      ->group(run_group);
+  app.add_flag("--no-slide", o.no_slide,
+               "Read, check and write every frame unchanged, without sliding: the I/O floor of a "
+               "run, for timing")
       ->group(run_group);
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run_group);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run_group);
@@ -622,6 +664,15 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"r", "g", "b"}))
       ->excludes(weights)
       ->group(controls);
+  auto* weights_attribute =
+      app.add_option("--weights-from-gltf-attribute", o.weights_attribute,
+                     "Slide weights from this vertex attribute of the bind glTF's mesh (e.g. "
+                     "_SLIDE_WEIGHT): SCALAR float, or normalized unsigned byte/short, on every "
+                     "triangle primitive; a welded vertex takes its first raw copy's weight")
+          ->type_name("NAME")
+          ->excludes(weights)
+          ->excludes("--weights-from-obj-color")
+          ->group(controls);
   app.add_option("--strength", o.strength,
                  "Multiplies every slide weight; the product is clamped to [0,1]")
       ->capture_default_str()
@@ -659,14 +710,23 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     o.rig = anim->count() > 0;
+    if (o.no_slide && (o.rig || !o.report.empty() || !o.dump_dir.empty() || !o.preview_dir.empty()))
+      throw CLI::ValidationError(
+          "--no-slide",
+          "copies frame files only: not with --animation, --report, --dump or --preview");
     if (!o.rig && o.frames.empty())
       throw CLI::ValidationError("FRAME...", "give at least one FRAME, or --animation with a rigged glTF BIND");
-    if (o.rig) {
-      std::string ext = fs::path(o.bind).extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-      if (ext != ".gltf" && ext != ".glb")
-        throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + o.bind);
-    }
+    std::string ext = fs::path(o.bind).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    const bool gltf_bind = ext == ".gltf" || ext == ".glb";
+    if (o.rig && !gltf_bind)
+      throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + o.bind);
+    if (weights_attribute->count() > 0 && o.weights_attribute.empty())
+      throw CLI::ValidationError("--weights-from-gltf-attribute", "needs an attribute name");
+    if (!o.weights_attribute.empty() && !gltf_bind)
+      throw CLI::ValidationError("--weights-from-gltf-attribute",
+                                 "needs a .gltf or .glb BIND, not " + o.bind);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::fprintf(stderr, "skinslide: error: %s\nRun with --help for the options.\n", e.what());

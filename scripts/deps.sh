@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libopenmesh-dev libeigen3-dev libcli11-dev libtinygltf-dev libopenexr-dev openexr
-  libstb-dev libgtest-dev
+  libstb-dev libgtest-dev libsuitesparse-dev
   python3-numpy python3-scipy
 )
 # The Khronos glTF validator (scripts/gltf_validate.sh) runs on node; the tests skip it, saying

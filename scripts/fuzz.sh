@@ -15,7 +15,7 @@ SKINSLIDE_FUZZ_DEPS=1 "$root/scripts/deps.sh"
 build=${SKINSLIDE_FUZZ_BUILD_DIR:-$root/build-fuzz}
 if [ ! -f "$build/CMakeCache.txt" ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DSKINSLIDE_FUZZ=ON -DSKINSLIDE_BUILD_TESTS=OFF \
+    -DSKINSLIDE_FUZZ=ON -DSKINSLIDE_BUILD_TESTS=OFF -DSKINSLIDE_BUILD_BENCH=OFF \
     -DSKINSLIDE_SANITIZE=fuzzer-no-link,address,undefined >/dev/null
 fi
 cmake --build "$build" --target "fuzz_$target" -j"${SKINSLIDE_JOBS:-2}"

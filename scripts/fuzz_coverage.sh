@@ -14,7 +14,8 @@ build=${SKINSLIDE_FUZZ_COVERAGE_DIR:-$root/build-fuzz-coverage}
 corpora=${SKINSLIDE_FUZZ_BUILD_DIR:-$root/build-fuzz}/corpus
 if [ ! -f "$build/CMakeCache.txt" ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-    -DSKINSLIDE_FUZZ=ON -DSKINSLIDE_BUILD_TESTS=OFF -DSKINSLIDE_SANITIZE=fuzzer-no-link \
+    -DSKINSLIDE_FUZZ=ON -DSKINSLIDE_BUILD_TESTS=OFF -DSKINSLIDE_BUILD_BENCH=OFF \
+    -DSKINSLIDE_SANITIZE=fuzzer-no-link \
     -DCMAKE_CXX_FLAGS="-fprofile-instr-generate -fcoverage-mapping" \
     -DCMAKE_EXE_LINKER_FLAGS="-fprofile-instr-generate" >/dev/null
 fi

@@ -4,8 +4,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -78,12 +76,31 @@ std::string read_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw Error(ErrorKind::Input, path + ": cannot read: it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorKind::Input, path + ": cannot read: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Error(ErrorKind::Input, path + ": read failed");
-  return std::move(ss).str();
+  // One bulk read into a string of the file's size: no stream buffers, no second copy.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(ErrorKind::Input, path + ": cannot read: " + std::strerror(errno));
+  struct stat st {};
+  std::string bytes;
+  if (::fstat(fd, &st) == 0 && st.st_size > 0) bytes.resize(static_cast<size_t>(st.st_size));
+  size_t used = 0;
+  char probe[4096];  // past the expected size (a file that grew, or a pipe): read on in chunks
+  for (;;) {
+    const bool full = used == bytes.size();
+    const ssize_t n = full ? ::read(fd, probe, sizeof probe)
+                           : ::read(fd, bytes.data() + used, bytes.size() - used);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const std::string reason = std::strerror(errno);
+      ::close(fd);
+      throw Error(ErrorKind::Input, path + ": read failed: " + reason);
+    }
+    if (n == 0) break;
+    if (full) bytes.append(probe, static_cast<size_t>(n));
+    used += static_cast<size_t>(n);
+  }
+  ::close(fd);
+  bytes.resize(used);
+  return bytes;
 }
 
 }  // namespace skinslide

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <tuple>
 
 #include "core/check.h"
 #include "locate/barycentric.h"
@@ -132,7 +133,55 @@ class TriangleGrid {
   std::vector<Index> items_;
 };
 
+// The fallback for the points the image or the walk did not place.
+void locate_missed(const Positions2& points, const Positions2& net,
+                   const std::vector<Triangle>& triangles, const std::vector<size_t>& missed,
+                   std::vector<Location>& out) {
+  if (missed.empty()) return;
+  // About one cell per triangle keeps both the build and each query short.
+  const int cells =
+      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(triangles.size()))), 1, 4096);
+  const TriangleGrid grid(net, triangles, cells);
+  for (size_t k : missed) out[k] = grid.locate(points[k]);
+}
+
 }  // namespace
+
+TriangleTopology triangle_topology(const std::vector<Triangle>& triangles, Index vertex_count) {
+  TriangleTopology topo;
+  const Index nt = static_cast<Index>(triangles.size());
+  topo.neighbour.assign(triangles.size(), {-1, -1, -1});
+  // Each directed edge (a, b) opposite corner k of triangle t; its twin (b, a) is the neighbour.
+  struct HalfEdge {
+    Index a, b, t, k;
+  };
+  std::vector<HalfEdge> edges;
+  edges.reserve(triangles.size() * 3);
+  for (Index t = 0; t < nt; ++t)
+    for (Index k = 0; k < 3; ++k)
+      edges.push_back({triangles[t][(k + 1) % 3], triangles[t][(k + 2) % 3], t, k});
+  std::sort(edges.begin(), edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return std::tie(x.a, x.b, x.t) < std::tie(y.a, y.b, y.t);
+  });
+  for (const HalfEdge& e : edges) {
+    const HalfEdge key{e.b, e.a, -1, 0};
+    const auto it =
+        std::lower_bound(edges.begin(), edges.end(), key, [](const HalfEdge& x, const HalfEdge& y) {
+          return std::tie(x.a, x.b, x.t) < std::tie(y.a, y.b, y.t);
+        });
+    if (it != edges.end() && it->a == e.b && it->b == e.a) topo.neighbour[e.t][e.k] = it->t;
+  }
+  topo.corner_start.assign(static_cast<size_t>(vertex_count) + 1, 0);
+  for (const Triangle& t : triangles)
+    for (Index v : t) ++topo.corner_start[v + 1];
+  for (size_t v = 0; v + 1 < topo.corner_start.size(); ++v)
+    topo.corner_start[v + 1] += topo.corner_start[v];
+  topo.corner_triangles.resize(topo.corner_start.back());
+  std::vector<Index> fill(topo.corner_start.begin(), topo.corner_start.end() - 1);
+  for (Index t = 0; t < nt; ++t)
+    for (Index v : triangles[t]) topo.corner_triangles[fill[v]++] = t;  // ascending t
+  return topo;
+}
 
 std::vector<Location> locate_points(const Positions2& points, const Positions2& net,
                                     const std::vector<Triangle>& triangles, const IdImage& image) {
@@ -148,7 +197,8 @@ std::vector<Location> locate_points(const Positions2& points, const Positions2& 
     candidates.clear();
     for (int j = std::max(pj - 1, 0); j <= std::min(pj + 1, n - 1); ++j)
       for (int i = std::max(pi - 1, 0); i <= std::min(pi + 1, n - 1); ++i)
-        if (const std::uint32_t id = image.at(i, j)) candidates.push_back(static_cast<Index>(id - 1));
+        if (const std::uint32_t id = image.at(i, j))
+          candidates.push_back(static_cast<Index>(id - 1));
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     if (auto holder = best_holder(p, net, triangles, candidates))
@@ -156,12 +206,68 @@ std::vector<Location> locate_points(const Positions2& points, const Positions2& 
     else
       missed.push_back(k);
   }
-  if (!missed.empty()) {
-    // About one cell per triangle keeps both the build and each query short.
-    const int cells = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(triangles.size()))), 1, 4096);
-    const TriangleGrid grid(net, triangles, cells);
-    for (size_t k : missed) out[k] = grid.locate(points[k]);
+  locate_missed(points, net, triangles, missed, out);
+  return out;
+}
+
+std::vector<Location> locate_points_by_walk(const Positions2& points,
+                                            const std::vector<Index>& start, const Positions2& net,
+                                            const std::vector<Triangle>& triangles,
+                                            const TriangleTopology& topology, bool folded) {
+  SKINSLIDE_CHECK(!triangles.empty(), "a net with triangles");
+  SKINSLIDE_CHECK(start.size() == points.size(), "one start node per point");
+  SKINSLIDE_CHECK(topology.neighbour.size() == triangles.size(), "topology of these triangles");
+  std::vector<Location> out(points.size());
+  std::vector<size_t> missed;
+  std::vector<Index> candidates;
+  const int max_steps = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(triangles.size())));
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Vec2& p = points[k];
+    const Index v = start[k];
+    SKINSLIDE_CHECK(topology.corner_start[v] < topology.corner_start[v + 1],
+                    "a start node with triangles");
+    Index t = topology.corner_triangles[topology.corner_start[v]];
+    Barycentric w;
+    bool held = false;
+    for (int step = 0; step <= max_steps; ++step) {
+      const Triangle& tri = triangles[t];
+      w = barycentric(p, net[tri[0]], net[tri[1]], net[tri[2]]);
+      if (!w.ok) break;  // a degenerate triangle: no direction to go
+      int worst = 0;
+      for (int c = 1; c < 3; ++c)
+        if (w.w[c] < w.w[worst]) worst = c;
+      if (w.w[worst] >= -kInsideEps) {
+        held = true;
+        break;
+      }
+      // Across the edge opposite the most negative barycentric; at a border, the other one.
+      Index next = topology.neighbour[t][worst];
+      if (next < 0) {
+        const int a = (worst + 1) % 3, b = (worst + 2) % 3;
+        const int other = w.w[a] < w.w[b] ? a : b;
+        if (w.w[other] < -kInsideEps) next = topology.neighbour[t][other];
+      }
+      if (next < 0) break;
+      t = next;
+    }
+    if (!held) {
+      missed.push_back(k);
+      continue;
+    }
+    if (!folded && w.min() > 0) {
+      out[k] = Location{t, w.w, false};
+      continue;
+    }
+    candidates.clear();
+    for (Index c : triangles[t])
+      candidates.insert(candidates.end(),
+                        topology.corner_triangles.begin() + topology.corner_start[c],
+                        topology.corner_triangles.begin() + topology.corner_start[c + 1]);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    out[k] = *best_holder(p, net, triangles, candidates);  // t itself holds p
   }
+  locate_missed(points, net, triangles, missed, out);
   return out;
 }
 

@@ -12,8 +12,22 @@ namespace skinslide {
 struct Location {
   Index triangle = -1;                    ///< index into the net's triangles
   std::array<double, 3> weight{1, 0, 0};  ///< barycentrics on the triangle's corners, sum 1
-  bool fallback = false;                  ///< not found through the image (see locate_points)
+  bool fallback = false;  ///< not found through the image or the walk (see locate_points)
 };
+
+/// Which triangles meet where, for walking a net: a pure function of the triangles, built once
+/// per patch. Triangles must be consistently oriented (every inner edge run both ways).
+struct TriangleTopology {
+  /// Per triangle, the triangle across the edge opposite corner k (k = 0, 1, 2); -1 on a border.
+  std::vector<std::array<Index, 3>> neighbour;
+  /// CSR: the triangles with corner v are corner_triangles[corner_start[v] .. corner_start[v+1]),
+  /// ascending.
+  std::vector<Index> corner_start;
+  std::vector<Index> corner_triangles;
+};
+
+/// \param vertex_count nodes of the net (#V); every triangle index < vertex_count.
+TriangleTopology triangle_topology(const std::vector<Triangle>& triangles, Index vertex_count);
 
 /// Finds, for each point, the net triangle that holds it (Yang & Zhang 2010, section III.F).
 /// Candidates are the triangles of the point's pixel and its 8 neighbours in `image` (built by
@@ -26,5 +40,20 @@ struct Location {
 /// \param points 2D points (#P); net: 2D node positions; triangles index `net`.
 std::vector<Location> locate_points(const Positions2& points, const Positions2& net,
                                     const std::vector<Triangle>& triangles, const IdImage& image);
+
+/// The same search without an image: point k is looked for by a walk through the net that starts
+/// at the lowest-index triangle with corner `start[k]` (a node near the point, e.g. the vertex
+/// whose bind position the point is) and steps across the edge of the most negative barycentric,
+/// at most 64 + 4 sqrt(#triangles) steps, until a triangle holds the point (all barycentrics
+/// >= -kInsideEps). The candidates are that triangle and every triangle sharing a corner with
+/// it, chosen by the rule of locate_points; a walk that leaves the net or runs out of steps ends
+/// in the same fallback. In a net without folds a triangle that holds the point strictly inside
+/// is the only candidate that can win, so the others are not evaluated there.
+/// \param start #P node ids; topology from triangle_topology(triangles, net.size()).
+/// \param folded the net has folded triangles (flipped_triangles > 0).
+std::vector<Location> locate_points_by_walk(const Positions2& points,
+                                            const std::vector<Index>& start, const Positions2& net,
+                                            const std::vector<Triangle>& triangles,
+                                            const TriangleTopology& topology, bool folded);
 
 }  // namespace skinslide

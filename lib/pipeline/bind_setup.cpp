@@ -59,8 +59,9 @@ int loop_of(const PatchComponent& comp, Index v) {
 void check_vertex(const std::string& option, Index v, Index vertex_count) {
   if (v < 0 || v >= vertex_count)
     throw Error(ErrorKind::Usage, option + ": vertex " + std::to_string(v) +
-                                      " is out of range (the bind has " + std::to_string(vertex_count) +
-                                      " vertices, numbered 0 to " + std::to_string(vertex_count - 1) + ")");
+                                      " is out of range (the bind has " +
+                                      std::to_string(vertex_count) + " vertices, numbered 0 to " +
+                                      std::to_string(vertex_count - 1) + ")");
 }
 
 // Resolves the corner and outer-loop choices to the patches whose loops they name. A choice
@@ -97,7 +98,8 @@ std::vector<PatchChoice> patch_choices(const std::vector<PatchComponent>& comps,
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < i; ++j)
         if (q[i] == q[j])
-          throw Error(ErrorKind::Usage, source + ": vertex " + std::to_string(q[i]) + " is named twice");
+          throw Error(ErrorKind::Usage,
+                      source + ": vertex " + std::to_string(q[i]) + " is named twice");
     bool used = false;
     Index stray = q[0];
     for (size_t c = 0; c < comps.size(); ++c) {
@@ -126,11 +128,12 @@ std::vector<PatchChoice> patch_choices(const std::vector<PatchComponent>& comps,
       }
     }
     if (!used)
-      throw Error(ErrorKind::Usage,
-                  source + ": vertex " + std::to_string(stray) +
-                      (stray == q[0] ? std::string(" is not on a boundary loop of any patch")
-                                     : " is not on the boundary loop through vertex " +
-                                           std::to_string(q[0]) + "; the four corners go on one loop"));
+      throw Error(
+          ErrorKind::Usage,
+          source + ": vertex " + std::to_string(stray) +
+              (stray == q[0] ? std::string(" is not on a boundary loop of any patch")
+                             : " is not on the boundary loop through vertex " +
+                                   std::to_string(q[0]) + "; the four corners go on one loop"));
   }
   return choices;
 }
@@ -139,7 +142,7 @@ std::vector<PatchChoice> patch_choices(const std::vector<PatchComponent>& comps,
 // each hole gets a virtual free node joined to its loop vertices, with the loop's mean q, so the
 // hole keeps its size instead of collapsing towards the free loop.
 Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const Positions2& outer_2d,
-                    Holes holes) {
+                    Holes holes, std::vector<Index>& node_order) {
   const Index n = static_cast<Index>(patch.vertices.size());
   BarNet net;
   net.node_count = n;
@@ -167,7 +170,7 @@ Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const P
     net.fixed[outer[k]] = 1;
     start[outer[k]] = outer_2d[k];
   }
-  Positions2 solved = solve_bar_net(net, q_all, start);
+  Positions2 solved = solve_bar_net(net, q_all, start, &node_order);
   solved.resize(n);
   return solved;
 }
@@ -232,6 +235,7 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   }
   patch.skipped = patch.free_vertices.empty();
   if (patch.skipped) return patch;  // nothing to move: no unwrap needed, whatever the loops
+  patch.topology = triangle_topology(patch.triangles, static_cast<Index>(patch.vertices.size()));
 
   const auto& outer = patch.loops[patch.outer_loop];
   SquareBoundary square;
@@ -249,7 +253,8 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
     if (walk != choice.corners)
       throw Error(ErrorKind::Usage, choice.corners_source +
                                         ": the corners are not in the loop's walking order; "
-                                        "walking from " + std::to_string(choice.corners[0]) +
+                                        "walking from " +
+                                        std::to_string(choice.corners[0]) +
                                         " the loop meets them as " + corners_text(walk).substr(10));
     square = square_positions(gather(points, outer), at);
     patch.corners_chosen = true;
@@ -258,8 +263,11 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   }
   for (int j = 0; j < 4; ++j) patch.corners[j] = outer[square.corners[j]];
   patch.bind_lengths = bar_lengths(points, patch.bars);
-  const std::vector<double> q = force_densities(patch.bind_lengths, options.density, options.q_floor);
-  patch.bind_net = bind_net(patch, q, square.positions, options.holes);
+  const std::vector<double> q =
+      force_densities(patch.bind_lengths, options.density, options.q_floor);
+  // The frame nets' free nodes are among the bind net's: its fill-reducing order serves them too.
+  std::vector<Index> node_order;
+  patch.bind_net = bind_net(patch, q, square.positions, options.holes, node_order);
   patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
 
   // Frame nets: the same bars, every loop vertex fixed at its bind-net position.
@@ -267,7 +275,8 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   frame.node_count = static_cast<Index>(patch.vertices.size());
   frame.bars = patch.bars;
   frame.fixed = std::move(fixed);
-  patch.solver = std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net);
+  patch.solver =
+      std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net, node_order);
   return patch;
 }
 
@@ -290,7 +299,8 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
 
   if (!controls.weight.empty() && static_cast<Index>(controls.weight.size()) != nv)
     throw Error(ErrorKind::Usage, "there are " + std::to_string(controls.weight.size()) +
-                                      " slide weights; the bind has " + std::to_string(nv) + " vertices");
+                                      " slide weights; the bind has " + std::to_string(nv) +
+                                      " vertices");
   if (!(controls.strength >= 0) || !std::isfinite(controls.strength))
     throw Error(ErrorKind::Usage, "--strength must be a finite number >= 0");
   for (size_t v = 0; v < controls.weight.size(); ++v)

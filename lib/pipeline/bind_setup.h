@@ -8,6 +8,7 @@
 
 #include "core/types.h"
 #include "locate/id_raster.h"
+#include "locate/locate.h"
 #include "mesh/patches.h"
 #include "mesh/poly_mesh.h"
 #include "pipeline/options.h"
@@ -19,25 +20,27 @@ class FrameNetSolver;  // unwrap/bar_net.h
 /// One connected component of the selected faces, prepared for sliding. "Local" ids index
 /// `vertices`; a virtual hole node (Holes::Fill) is never part of these arrays.
 struct PatchNet {
-  std::vector<Index> faces;           ///< mesh face ids, ascending
-  std::vector<Index> vertices;        ///< mesh vertex ids, ascending (local id = position)
+  std::vector<Index> faces;                ///< mesh face ids, ascending
+  std::vector<Index> vertices;             ///< mesh vertex ids, ascending (local id = position)
   std::vector<std::array<Index, 2>> bars;  ///< polygon edges, local ids, (a < b), sorted
-  std::vector<Triangle> triangles;    ///< fan triangles of `faces`, local ids, face order
-  std::vector<Index> triangle_face;   ///< mesh face of each triangle
-  std::vector<Index> triangle_fan;    ///< k: triangle has face slots (0, k+1, k+2)
-  std::vector<std::vector<Index>> loops;  ///< boundary loops, local ids, each from its smallest
-  Index outer_loop = 0;               ///< index into `loops`
-  std::array<Index, 4> corners{};     ///< local ids of the square's corners (0,0) (1,0) (1,1) (0,1)
-  bool skipped = false;               ///< every vertex is on a boundary loop: nothing slides
-  Positions2 bind_net;                ///< 2D position of every local vertex
-  std::vector<Index> free_vertices;   ///< local ids that slide (not on any loop, not pinned), ascending
-  std::vector<Index> pinned;          ///< local ids pinned by SlideControls::pins (not on a loop)
-  std::vector<double> bind_lengths;   ///< 3D length of each bar in the bind
-  bool outer_loop_chosen = false;     ///< the outer loop came from --outer-loop-vertex/--corners
-  bool corners_chosen = false;        ///< the corners came from --corners
-  double bind_diagonal = 0;           ///< bounding-box diagonal of the patch in the bind
-  int bind_net_flips = 0;             ///< bind-net triangles of the minority orientation
-  Index selection = 0;                ///< which selection (--patch file) it came from
+  std::vector<Triangle> triangles;         ///< fan triangles of `faces`, local ids, face order
+  std::vector<Index> triangle_face;        ///< mesh face of each triangle
+  std::vector<Index> triangle_fan;         ///< k: triangle has face slots (0, k+1, k+2)
+  TriangleTopology topology;               ///< neighbours of `triangles`, for walking frame nets
+  std::vector<std::vector<Index>> loops;   ///< boundary loops, local ids, each from its smallest
+  Index outer_loop = 0;                    ///< index into `loops`
+  std::array<Index, 4> corners{};  ///< local ids of the square's corners (0,0) (1,0) (1,1) (0,1)
+  bool skipped = false;            ///< every vertex is on a boundary loop: nothing slides
+  Positions2 bind_net;             ///< 2D position of every local vertex
+  std::vector<Index>
+      free_vertices;          ///< local ids that slide (not on any loop, not pinned), ascending
+  std::vector<Index> pinned;  ///< local ids pinned by SlideControls::pins (not on a loop)
+  std::vector<double> bind_lengths;  ///< 3D length of each bar in the bind
+  bool outer_loop_chosen = false;    ///< the outer loop came from --outer-loop-vertex/--corners
+  bool corners_chosen = false;       ///< the corners came from --corners
+  double bind_diagonal = 0;          ///< bounding-box diagonal of the patch in the bind
+  int bind_net_flips = 0;            ///< bind-net triangles of the minority orientation
+  Index selection = 0;               ///< which selection (--patch file) it came from
   std::shared_ptr<const FrameNetSolver> solver;  ///< reused by every frame
 };
 

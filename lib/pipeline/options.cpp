@@ -17,6 +17,18 @@ Holes parse_holes(const std::string& name) {
   throw Error(ErrorKind::Usage, "unknown hole mode '" + name + "' (free, fill)");
 }
 
+FrameSolver parse_frame_solver(const std::string& name) {
+  if (name == "cholesky") return FrameSolver::Cholesky;
+  if (name == "cg") return FrameSolver::Cg;
+  throw Error(ErrorKind::Usage, "unknown frame solver '" + name + "' (cholesky, cg)");
+}
+
+Locate parse_locate(const std::string& name) {
+  if (name == "walk") return Locate::Walk;
+  if (name == "image") return Locate::Image;
+  throw Error(ErrorKind::Usage, "unknown locate method '" + name + "' (walk, image)");
+}
+
 std::string to_string(Density d) {
   switch (d) {
     case Density::Paper:
@@ -31,4 +43,10 @@ std::string to_string(Density d) {
 
 std::string to_string(Holes h) { return h == Holes::Free ? "free" : "fill"; }
 
+std::string to_string(FrameSolver s) { return s == FrameSolver::Cg ? "cg" : "cholesky"; }
+
+}  // namespace skinslide
+
+namespace skinslide {
+std::string to_string(Locate l) { return l == Locate::Image ? "image" : "walk"; }
 }  // namespace skinslide

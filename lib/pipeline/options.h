@@ -22,13 +22,28 @@ enum class Holes {
   Fill,  ///< each hole gets a virtual free node joined to every loop vertex
 };
 
+/// How each frame net is solved (same result within the CG tolerance).
+enum class FrameSolver {
+  Cholesky,  ///< sparse Cholesky, ordering and symbolic analysis reused by every frame
+  Cg,        ///< conjugate gradient (Jacobi), warm-started at the bind net
+};
+
+/// How each free vertex's bind-net point is found in the frame net (the same rule for picking
+/// among the triangles that hold it; README "The method, exactly", 7).
+enum class Locate {
+  Walk,   ///< walk the frame net from the vertex's own triangles
+  Image,  ///< look up a triangle-ID image of the frame net (the paper's way)
+};
+
 struct SlideOptions {
   Density density = Density::Inverse;
   Holes holes = Holes::Fill;
-  double q_floor = 1e-3;         ///< lower bound of q (Paper, Inverse)
+  double q_floor = 1e-3;  ///< lower bound of q (Paper, Inverse)
+  FrameSolver frame_solver = FrameSolver::Cholesky;
   double cg_tolerance = 1e-12;   ///< CG stops at |r| <= tol * |b| (Eigen's criterion)
   int cg_max_iterations = 2000;  ///< past it the frame net is solved directly (counted)
-  int lookup_size = 1024;        ///< ID image side in pixels
+  Locate locate = Locate::Walk;
+  int lookup_size = 1024;  ///< ID image side in pixels (Locate::Image)
 };
 
 /// The animator's controls (README "Controls"): where and how much skin slides, and how a patch
@@ -52,9 +67,13 @@ struct SlideControls {
   std::vector<Index> outer_loop_vertices;
 };
 
-Density parse_density(const std::string& name);  ///< throws Usage on an unknown name
-Holes parse_holes(const std::string& name);      ///< throws Usage on an unknown name
+Density parse_density(const std::string& name);           ///< throws Usage on an unknown name
+Holes parse_holes(const std::string& name);               ///< throws Usage on an unknown name
+FrameSolver parse_frame_solver(const std::string& name);  ///< throws Usage on an unknown name
+Locate parse_locate(const std::string& name);             ///< throws Usage on an unknown name
 std::string to_string(Density d);
 std::string to_string(Holes h);
+std::string to_string(FrameSolver s);
+std::string to_string(Locate l);
 
 }  // namespace skinslide

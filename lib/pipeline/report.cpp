@@ -89,14 +89,17 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   std::vector<std::string> files;
   for (const std::string& f : run.patch_files) files.push_back(quoted(f));
   root.add("patch_files", inline_array(files));
-  root.add("options", Object(2)
-                          .add("density", quoted(to_string(o.density)))
-                          .add("holes", quoted(to_string(o.holes)))
-                          .add("q_floor", number(o.q_floor))
-                          .add("cg_tolerance", number(o.cg_tolerance))
-                          .add("cg_max_iterations", number(static_cast<long long>(o.cg_max_iterations)))
-                          .add("lookup_size", number(static_cast<long long>(o.lookup_size)))
-                          .str());
+  root.add("options",
+           Object(2)
+               .add("density", quoted(to_string(o.density)))
+               .add("holes", quoted(to_string(o.holes)))
+               .add("q_floor", number(o.q_floor))
+               .add("frame_solver", quoted(to_string(o.frame_solver)))
+               .add("cg_tolerance", number(o.cg_tolerance))
+               .add("cg_max_iterations", number(static_cast<long long>(o.cg_max_iterations)))
+               .add("locate", quoted(to_string(o.locate)))
+               .add("lookup_size", number(static_cast<long long>(o.lookup_size)))
+               .str());
   root.add("controls", Object(2)
                            .add("weights", run.weights.empty() ? "null" : quoted(run.weights))
                            .add("strength", number(run.strength))

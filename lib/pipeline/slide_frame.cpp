@@ -50,8 +50,9 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
 
   auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> q = force_densities(bar_lengths(points, patch.bars), opt.density, opt.q_floor);
-  FrameNetSolution net = patch.solver->solve(q, {opt.cg_tolerance, opt.cg_max_iterations});
+  const std::vector<double> q =
+      force_densities(bar_lengths(points, patch.bars), opt.density, opt.q_floor);
+  FrameNetSolution net = patch.solver->solve(q, frame_net_options(opt));
   report.cg_iterations = net.iterations;
   report.cg_residual = net.residual;
   report.direct_solve = net.direct;
@@ -60,10 +61,17 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   report.solve_seconds = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  IdImage image = id_raster(report.frame_net, patch.triangles, opt.lookup_size);
+  IdImage image;
+  if (opt.locate == Locate::Image || keep_id_image)
+    image = id_raster(report.frame_net, patch.triangles, opt.lookup_size);
   Positions2 targets(patch.free_vertices.size());
   for (size_t k = 0; k < targets.size(); ++k) targets[k] = patch.bind_net[patch.free_vertices[k]];
-  const std::vector<Location> where = locate_points(targets, report.frame_net, patch.triangles, image);
+  // Each target is the bind-net position of a free vertex: the walk starts at that vertex.
+  const std::vector<Location> where =
+      opt.locate == Locate::Image
+          ? locate_points(targets, report.frame_net, patch.triangles, image)
+          : locate_points_by_walk(targets, patch.free_vertices, report.frame_net, patch.triangles,
+                                  patch.topology, report.frame_net_flips > 0);
 
   report.locate_seconds = seconds_since(t0);
 
@@ -90,7 +98,9 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
     output[v] = p;
     ++report.moved;
     const Index fan = patch.triangle_fan[loc.triangle];
-    moved.push_back({patch.vertices[v], SurfaceSample{patch.triangle_face[loc.triangle], {0, fan + 1, fan + 2}, loc.weight}, p});
+    moved.push_back(
+        {patch.vertices[v],
+         SurfaceSample{patch.triangle_face[loc.triangle], {0, fan + 1, fan + 2}, loc.weight}, p});
     const double d = (p - points[v]).norm();
     report.max_slide = std::max(report.max_slide, d);
     total += d;
@@ -106,10 +116,20 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
 
 }  // namespace
 
+FrameNetOptions frame_net_options(const SlideOptions& options) {
+  FrameNetOptions o;
+  o.method =
+      options.frame_solver == FrameSolver::Cg ? FrameNetMethod::Cg : FrameNetMethod::Cholesky;
+  o.cg_tolerance = options.cg_tolerance;
+  o.cg_max_iterations = options.cg_max_iterations;
+  return o;
+}
+
 FrameResult slide_frame(const BindSetup& setup, const Positions3& frame, bool keep_id_image) {
   if (static_cast<Index>(frame.size()) != setup.vertex_count)
     throw Error(ErrorKind::Input, "the frame has " + std::to_string(frame.size()) +
-                                      " vertices; the bind has " + std::to_string(setup.vertex_count));
+                                      " vertices; the bind has " +
+                                      std::to_string(setup.vertex_count));
   FrameResult result;
   std::vector<Moved> moved;
   for (size_t p = 0; p < setup.patches.size(); ++p) {
@@ -119,7 +139,8 @@ FrameResult slide_frame(const BindSetup& setup, const Positions3& frame, bool ke
       throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
     }
   }
-  std::sort(moved.begin(), moved.end(), [](const Moved& a, const Moved& b) { return a.vertex < b.vertex; });
+  std::sort(moved.begin(), moved.end(),
+            [](const Moved& a, const Moved& b) { return a.vertex < b.vertex; });
   for (size_t k = 1; k < moved.size(); ++k)
     SKINSLIDE_CHECK(moved[k].vertex != moved[k - 1].vertex, "a vertex slides in one patch only");
   result.slid.vertex.reserve(moved.size());

@@ -1,4 +1,4 @@
-// One frame: frame net (warm-started CG), ID image, point location, transfer.
+// One frame: frame net, point location (a walk or an ID image), transfer.
 #pragma once
 
 #include <vector>
@@ -7,6 +7,7 @@
 #include "locate/id_raster.h"
 #include "pipeline/bind_setup.h"
 #include "slide/transfer.h"
+#include "unwrap/bar_net.h"
 
 namespace skinslide {
 
@@ -15,7 +16,7 @@ struct PatchFrameReport {
   int cg_iterations = 0;      ///< CG iterations (the larger of the x and y solves)
   double cg_residual = 0;     ///< final |r|/|b|
   bool direct_solve = false;  ///< CG did not converge; the net was solved directly
-  int located_in_image = 0;   ///< vertices found through the ID image
+  int located_in_image = 0;   ///< vertices found through the ID image or the walk
   int located_fallback = 0;   ///< vertices found by the nearest-triangle fallback
   int frame_net_flips = 0;    ///< frame-net triangles of the minority orientation
   double max_slide = 0;       ///< largest |output - frame| (frame units, after weights)
@@ -28,8 +29,8 @@ struct PatchFrameReport {
   double solve_seconds = 0;     ///< wall time of the frame net (not deterministic)
   double locate_seconds = 0;    ///< ID image and point location
   double transfer_seconds = 0;  ///< 3D positions, weights, spreads
-  Positions2 frame_net;       ///< 2D position of every local vertex in this frame's net
-  IdImage id_image;           ///< the lookup image (kept only with keep_id_image)
+  Positions2 frame_net;         ///< 2D position of every local vertex in this frame's net
+  IdImage id_image;             ///< the lookup image (kept only with keep_id_image)
 };
 
 struct FrameResult {
@@ -37,11 +38,15 @@ struct FrameResult {
   std::vector<PatchFrameReport> patches;  ///< parallel to BindSetup::patches
 };
 
+/// The frame-net solver settings of `options` (method, CG tolerance and iteration cap).
+FrameNetOptions frame_net_options(const SlideOptions& options);
+
 /// Slides one frame. `frame` holds the deformed positions of every mesh vertex (#V).
 /// A free vertex v of weight w = setup.weight[v] (1 when empty) is written at
 /// frame + w (slid - frame): exactly `slid` for w = 1; not written at all for w = 0.
 /// Pure: the result depends only on (setup, frame) (the *_seconds timings aside).
 /// \throw Error(Numeric) when a solve fails or a result is not finite.
-FrameResult slide_frame(const BindSetup& setup, const Positions3& frame, bool keep_id_image = false);
+FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
+                        bool keep_id_image = false);
 
 }  // namespace skinslide

@@ -17,43 +17,65 @@ struct BarNet {
   std::vector<char> fixed;  ///< #nodes; 1 = fixed
 };
 
-/// Equilibrium of the net by a direct sparse solve (Eigen SimplicialLDLT, x and y together).
+/// Equilibrium of the net by a direct sparse solve (CHOLMOD LDL^T with a METIS ordering, x and
+/// y together).
 /// \param q one force density per bar (> 0)
 /// \param positions #nodes; the entries of fixed nodes are used, the others ignored
+/// \param node_order if given, receives the free nodes in the factorisation's fill-reducing
+///        order, for a FrameNetSolver on a net whose free nodes are among these
 /// \return #nodes positions: fixed nodes as given, free nodes in equilibrium
 /// \throw Error(Numeric) when the system is singular (a free node with no path to a fixed one)
 ///        or the result is not finite.
-Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q, const Positions2& positions);
+Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q,
+                         const Positions2& positions, std::vector<Index>* node_order = nullptr);
 
-struct CgOptions {
-  double tolerance = 1e-12;  ///< stop at |r| <= tolerance * |b| (each of x and y)
-  int max_iterations = 2000;
+/// How FrameNetSolver solves a frame.
+enum class FrameNetMethod {
+  Cholesky,  ///< sparse Cholesky (CHOLMOD LDL^T), ordering and symbolic analysis done once;
+             ///< the warm start is kept when its residual already meets cg_tolerance
+  Cg,        ///< Jacobi-preconditioned CG warm-started at the bind net, x and y separately
+};
+
+struct FrameNetOptions {
+  FrameNetMethod method = FrameNetMethod::Cholesky;
+  double cg_tolerance = 1e-12;   ///< CG stops at |r| <= cg_tolerance * |b| (each of x and y)
+  int cg_max_iterations = 2000;  ///< past it CG gives way to a direct solve
 };
 
 struct FrameNetSolution {
-  Positions2 positions;    ///< #nodes
-  int iterations = 0;      ///< CG iterations, the larger of x and y
-  double residual = 0;     ///< CG's final |r|/|b|, the larger of x and y
-  bool direct = false;     ///< CG did not converge: solved by SimplicialLDLT instead
+  Positions2 positions;  ///< #nodes
+  int iterations = 0;    ///< CG iterations, the larger of x and y (0 for Cholesky)
+  double residual = 0;   ///< CG's final |r|/|b|, the larger of x and y (0 for Cholesky)
+  bool direct = false;   ///< CG did not converge: solved by SimplicialLDLT instead
 };
 
-/// Solves the same net (same bars, same fixed nodes at the same positions) for many q vectors by
-/// Jacobi-preconditioned conjugate gradient, warm-started at a given net (the paper's frame
-/// unwrap, section III.E). The sparsity pattern is built once; per solve only values change.
+/// Solves the same net (same bars, same fixed nodes at the same positions) for many q vectors
+/// (the paper's frame unwrap, section III.E). Built once: the free system's sparsity pattern, the
+/// slot of each bar in it, a fill-reducing ordering (METIS nested dissection) and the symbolic
+/// Cholesky factor. Per solve only values change. `solve` is const and thread-safe: each call
+/// owns its numeric factor, so frames can be solved in parallel with identical results.
 class FrameNetSolver {
  public:
   /// \param positions #nodes: fixed nodes at their positions, free nodes at the warm start
-  FrameNetSolver(BarNet net, Positions2 positions);
-  FrameNetSolution solve(const std::vector<double>& q, const CgOptions& options) const;
+  /// \param node_order a fill-reducing order of (a superset of) the free nodes, e.g. from
+  ///        solve_bar_net on the bind net; other nodes in it are skipped. Empty: METIS's own.
+  /// \throw Error(Numeric) when the symbolic analysis fails.
+  FrameNetSolver(BarNet net, Positions2 positions, const std::vector<Index>& node_order = {});
+  /// \param q one force density per bar (> 0)
+  /// \return #nodes positions: fixed nodes as given, free nodes in equilibrium
+  /// \throw Error(Numeric) when the system is singular or the result is not finite.
+  FrameNetSolution solve(const std::vector<double>& q, const FrameNetOptions& options) const;
   const BarNet& net() const { return net_; }
 
  private:
   BarNet net_;
-  Positions2 start_;                    // #nodes
-  std::vector<Index> free_id_;          // node -> row of the free system, -1 if fixed
-  std::vector<Index> free_nodes_;       // row -> node
-  SparseMatrix pattern_;                // K_ff's pattern (values ignored)
+  Positions2 start_;                        // #nodes
+  std::vector<Index> free_id_;              // node -> row of the free system, -1 if fixed
+  std::vector<Index> free_nodes_;           // row -> node
+  SparseMatrix pattern_;                    // K_ff's pattern (values ignored)
   std::vector<std::array<Index, 4>> slot_;  // per bar: value slots (aa, bb, ab, ba), -1 if none
+  struct Symbolic;
+  std::shared_ptr<const Symbolic> symbolic_;  // K_ff's symbolic factor (CHOLMOD)
 };
 
 /// Triangles of `net` whose signed area is zero or of the minority sign (folds of the net).

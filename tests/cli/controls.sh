@@ -3,25 +3,8 @@
 # loops, the JSON report, the config file, the progress output, and their errors.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/controls.sh
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+source "$(dirname "$0")/harness.sh"
 py=/usr/bin/python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-check() {  # check NAME CONDITION-COMMAND...
-  local name=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name" >&2
-  fi
-}
 
 expect_exit() {  # expect_exit CODE PATTERN ARGS...: exit code, and stderr holds "skinslide: error: ...PATTERN"
   local code=$1 pattern=$2
@@ -196,5 +179,4 @@ check "a report over an input is refused (2)" expect_exit 2 "would overwrite inp
   --report data/elbow/patch.txt "${elbow[@]}" -o "$tmp/e10"
 check "--strength below 0 is a usage error (2)" expect_exit 2 "strength" --strength -1 "${elbow[@]}" -o "$tmp/e11"
 
-echo "controls: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish controls

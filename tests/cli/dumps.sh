@@ -4,24 +4,7 @@
 # anything is written.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/dumps.sh
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-check() {  # check NAME CONDITION-COMMAND...
-  local name=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name" >&2
-  fi
-}
+source "$(dirname "$0")/harness.sh"
 
 lists() {  # lists FILE PATTERN...: exrheader reads FILE and prints every PATTERN
   local out
@@ -68,5 +51,4 @@ check "a frame named bind.obj with --dump exits 2" [ "$rc" -eq 2 ]
 check "and says why" grep -q "would overwrite the bind's" "$tmp/stderr"
 check "and writes nothing" bash -c "[ ! -e '$tmp/clash/slid' ] && [ ! -e '$tmp/clash/dump' ]"
 
-echo "dumps.sh: $passed passed, $failed failed" >&2
-[ "$failed" -eq 0 ]
+finish dumps

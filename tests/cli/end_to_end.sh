@@ -3,24 +3,7 @@
 # determinism across thread counts, and that errors write nothing.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/end_to_end.sh
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-check() {  # check NAME CONDITION-COMMAND...
-  local name=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name" >&2
-  fi
-}
+source "$(dirname "$0")/harness.sh"
 
 expect_exit() {  # expect_exit CODE OUTDIR ARGS...: runs skinslide, checks the code and that stderr says "error"
   local code=$1 out=$2
@@ -65,6 +48,21 @@ cp data/face/bind.obj "$tmp/identity.obj"
 "$bin" -q --patch data/face/patch.txt data/face/bind.obj "$tmp/identity.obj" -o "$tmp/identity"
 check "an identity frame is written unchanged" cmp data/face/bind.obj "$tmp/identity/identity.obj"
 
+# --no-slide (the I/O floor): every frame written byte for byte; --frame-solver cg and
+# --locate image: the same results.
+"$bin" -q --no-slide --patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/noslide"
+check "--no-slide writes every frame unchanged" diff -r data/elbow/frames "$tmp/noslide"
+"$bin" -q --frame-solver cg --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.cg"
+"$bin" -q --locate image --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.image"
+for out in "$tmp"/face.image/*.obj; do
+  check "--locate image: $(basename "$out") matches its golden file" \
+    /usr/bin/python3 "$here/compare_obj.py" "$here/golden/face/$(basename "$out")" "$out"
+done
+for out in "$tmp"/face.cg/*.obj; do
+  check "--frame-solver cg: $(basename "$out") matches its golden file" \
+    /usr/bin/python3 "$here/compare_obj.py" "$here/golden/face/$(basename "$out")" "$out"
+done
+
 # Only v lines change: every other line of a slid frame is the frame's own.
 check "only v lines differ from the frame" bash -c \
   "diff <(grep -v '^v ' data/elbow/frames/elbow.0003.obj) <(grep -v '^v ' '$tmp/elbow.t1/elbow.0003.obj')"
@@ -88,5 +86,4 @@ check "an output folder that is a file is an output error (4)" expect_exit 4 "$t
 check "an output that would overwrite an input is refused (2)" expect_exit 2 data/elbow/frames --patch data/elbow/patch.txt data/elbow/bind.obj "$f"
 check "the input is intact" cmp "$f" <(git -C "$root" show HEAD:"$f" 2>/dev/null || cat "$f")
 
-echo "end_to_end: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish end_to_end

@@ -1,30 +1,14 @@
 #!/usr/bin/env bash
 # End-to-end checks of skinslide on the shared rigged glTF characters: a character as its own
-# frame source (--animation), its outputs (names, formats, validity, determinism) and the
-# usage errors of the glTF options (exit code 2, nothing written).
+# frame source (--animation), its outputs (names, formats, validity, determinism), slide weights
+# from a glTF vertex attribute, and the usage errors of the glTF options (exit code 2, nothing
+# written).
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/gltf_end_to_end.sh
 set -u
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+source "$(dirname "$0")/harness.sh"
 shared=${SKINSLIDE_SHARED_DIR:-$root/../shared}
 simple="$shared/data/gltf/RiggedSimple.glb"
 patch="$here/gltf/RiggedSimple_bend.txt"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-check() {  # check NAME COMMAND...
-  local name=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name" >&2
-  fi
-}
 
 expect_exit() {  # expect_exit CODE OUTDIR ARGS...: the exit code, an error line, no output folder
   local code=$1 out=$2
@@ -85,6 +69,89 @@ else
     cmp "$tmp/files/RiggedSimple.0010.glb" "$tmp/files.m0/RiggedSimple.0010.glb"
 fi
 
+# Slide weights from a glTF vertex attribute (--weights-from-gltf-attribute): RiggedSimple with
+# a float _SLIDE_WEIGHT on its primitive, given per raw vertex by a Python expression in x y z.
+add_weights() {  # add_weights EXPRESSION OUT.glb
+  python3 - "$simple" "$1" "$2" <<'PY'
+import json, struct, sys
+src, expr, out = sys.argv[1:4]
+data = open(src, "rb").read()
+n = struct.unpack_from("<I", data, 12)[0]
+doc = json.loads(data[20:20 + n])
+binary = bytearray(data[28 + n:28 + n + struct.unpack_from("<I", data, 20 + n)[0]])
+for prim in doc["meshes"][0]["primitives"]:
+    acc = doc["accessors"][prim["attributes"]["POSITION"]]
+    view = doc["bufferViews"][acc["bufferView"]]
+    base = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+    stride = view.get("byteStride", 12)
+    w = [eval(expr, {}, dict(zip("xyz", struct.unpack_from("<3f", binary, base + i * stride))))
+         for i in range(acc["count"])]
+    while len(binary) % 4:
+        binary.append(0)
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": 4 * len(w)})
+    binary += struct.pack("<%df" % len(w), *w)
+    doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, "componentType": 5126,
+                             "count": len(w), "type": "SCALAR"})
+    prim["attributes"]["_SLIDE_WEIGHT"] = len(doc["accessors"]) - 1
+doc["buffers"][0]["byteLength"] = len(binary)
+text = json.dumps(doc).encode()
+text += b" " * (-len(text) % 4)
+binary += b"\0" * (-len(binary) % 4)
+with open(out, "wb") as f:
+    f.write(struct.pack("<4sII", b"glTF", 2, 28 + len(text) + len(binary)))
+    f.write(struct.pack("<I4s", len(text), b"JSON") + text)
+    f.write(struct.pack("<I4s", len(binary), b"BIN\0") + binary)
+PY
+}
+rig=(-q --fps 4 --patch "$patch" --animation 0)
+add_weights 0 "$tmp/w0.glb"
+add_weights 1 "$tmp/w1.glb"
+add_weights "1 if x > 0 else 0" "$tmp/wx.glb"
+"$bin" "${rig[@]}" "$tmp/w0.glb" -o "$tmp/w0.plain"
+"$bin" "${rig[@]}" "$tmp/w0.glb" -o "$tmp/w0.s0" --strength 0
+"$bin" "${rig[@]}" "$tmp/w0.glb" -o "$tmp/w0.attr" --weights-from-gltf-attribute _SLIDE_WEIGHT
+check "the slide moves something (the weights tests below can fail)" \
+  bash -c "! diff -r -q '$tmp/w0.plain' '$tmp/w0.s0' >/dev/null"
+check "attribute weights 0 leave every frame as --strength 0 does" diff -r "$tmp/w0.s0" "$tmp/w0.attr"
+"$bin" "${rig[@]}" "$tmp/w1.glb" -o "$tmp/w1.plain"
+"$bin" "${rig[@]}" "$tmp/w1.glb" -o "$tmp/w1.attr" --weights-from-gltf-attribute _SLIDE_WEIGHT
+check "attribute weights 1 give the full slide" diff -r "$tmp/w1.plain" "$tmp/w1.attr"
+"$bin" "${rig[@]}" "$tmp/wx.glb" -o "$tmp/wx.plain"
+"$bin" "${rig[@]}" "$tmp/wx.glb" -o "$tmp/wx.s0" --strength 0
+"$bin" "${rig[@]}" "$tmp/wx.glb" -o "$tmp/wx.attr" --weights-from-gltf-attribute _SLIDE_WEIGHT
+check "attribute weights 1 (x > 0) slide, 0 (x <= 0) keep the frame, per raw vertex" \
+  python3 - "$simple" "$tmp/wx.s0" "$tmp/wx.plain" "$tmp/wx.attr" <<'PY'
+import json, os, struct, sys
+def positions(path):
+    data = open(path, "rb").read()
+    n = struct.unpack_from("<I", data, 12)[0]
+    doc = json.loads(data[20:20 + n])
+    binary = data[28 + n:]
+    acc = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]
+    view = doc["bufferViews"][acc["bufferView"]]
+    base = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+    stride = view.get("byteStride", 12)
+    return [struct.unpack_from("<3f", binary, base + i * stride) for i in range(acc["count"])]
+bind = positions(sys.argv[1])
+frames, plain, attr = sys.argv[2:5]
+slid = {True: 0, False: 0}
+for name in sorted(os.listdir(frames)):
+    f, p, a = (positions(os.path.join(d, name)) for d in (frames, plain, attr))
+    for b, fv, pv, av in zip(bind, f, p, a):
+        assert av == (pv if b[0] > 0 else fv), (name, b, fv, pv, av)
+        slid[b[0] > 0] += fv != pv
+assert slid[True] > 0 and slid[False] > 0, slid
+PY
+check "a bind without the attribute is an input error (3)" \
+  expect_exit 3 "$tmp/e10" --weights-from-gltf-attribute _SLIDE_WEIGHT "${rig[@]:1}" "$simple"
+grep -qF "RiggedSimple.glb: mesh 0 primitive 0: has no _SLIDE_WEIGHT attribute" "$tmp/stderr" ||
+  { echo "no attribute message: $(cat "$tmp/stderr")" >&2; failed=$((failed + 1)); }
+add_weights 1.25 "$tmp/wbad.glb"
+check "a weight outside [0, 1] is an input error (3)" \
+  expect_exit 3 "$tmp/e11" --weights-from-gltf-attribute _SLIDE_WEIGHT "${rig[@]:1}" "$tmp/wbad.glb"
+grep -qF "primitive 0: _SLIDE_WEIGHT accessor 10: element 0 is 1.25, outside [0, 1]" "$tmp/stderr" ||
+  { echo "no range message: $(cat "$tmp/stderr")" >&2; failed=$((failed + 1)); }
+
 # Every GLB written above passes the Khronos validator (skipped, saying so, when unavailable).
 bash "$root/scripts/gltf_validate.sh" "$tmp/rs.t1"/*.glb $(ls "$tmp"/files/*.glb "$tmp"/mixed/*.glb 2>/dev/null) \
   >"$tmp/validate" 2>&1
@@ -112,10 +179,18 @@ check "no FRAME and no --animation is refused" \
 check "an unknown clip is a usage error listing the clips" \
   expect_exit 2 "$tmp/e7" --animation Jump --patch "$patch" "$simple"
 grep -q '0 "": 0.042 s to 2.083 s' "$tmp/stderr" || { echo "no clip list: $(cat "$tmp/stderr")" >&2; failed=$((failed + 1)); }
+check "--weights-from-gltf-attribute with an OBJ bind is refused" \
+  expect_exit 2 "$tmp/e12" --weights-from-gltf-attribute _SLIDE_WEIGHT --patch "$root/data/elbow/patch.txt" \
+  "$root/data/elbow/bind.obj" "$root/data/elbow/frames/elbow.0001.obj"
+check "--weights-from-gltf-attribute with --weights is refused" \
+  expect_exit 2 "$tmp/e13" --weights-from-gltf-attribute _SLIDE_WEIGHT --weights "$patch" \
+  --animation 0 --patch "$patch" "$simple"
+check "--weights-from-gltf-attribute with --weights-from-obj-color is refused" \
+  expect_exit 2 "$tmp/e14" --weights-from-gltf-attribute _SLIDE_WEIGHT --weights-from-obj-color r \
+  --animation 0 --patch "$patch" "$simple"
 check "an unknown mesh is an input error" \
   expect_exit 3 "$tmp/e8" --mesh Nose --animation 0 --patch "$patch" "$simple"
 check "a static (unskinned) character is an input error" \
   expect_exit 3 "$tmp/e9" --animation 0 --patch "$patch" "$tmp/rs.t1/RiggedSimple.0003.glb"
 
-echo "gltf_end_to_end: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish gltf_end_to_end

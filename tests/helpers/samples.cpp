@@ -1,6 +1,7 @@
 #include "helpers/samples.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "helpers/meshes.h"
@@ -51,6 +52,19 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
     return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
   const double den = 1 / (va + vb + vc);
   return (p - (a + ab * vb * den + ac * vc * den)).norm();
+}
+
+double edge_log_spread(const PatchNet& patch, const Positions3& bind, const Positions3& x) {
+  std::vector<double> r;
+  for (const auto& [a, b] : patch.bars) {
+    const Index u = patch.vertices[a], v = patch.vertices[b];
+    r.push_back(std::log((x[u] - x[v]).norm() / (bind[u] - bind[v]).norm()));
+  }
+  double mean = 0, var = 0;
+  for (double v : r) mean += v;
+  mean /= static_cast<double>(r.size());
+  for (double v : r) var += (v - mean) * (v - mean);
+  return std::sqrt(var / static_cast<double>(r.size()));
 }
 
 }  // namespace skinslide::test

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "mesh/poly_mesh.h"
+#include "pipeline/bind_setup.h"
 
 namespace skinslide::test {
 
@@ -22,5 +23,9 @@ double diagonal(const Positions3& points);
 
 /// Exact distance from p to the 3D triangle abc.
 double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// std of log(L / L_bind) over the patch's bars: how unevenly the patch is stretched (the measure
+/// of README "Choosing the defaults"), computed here independently of the library's report.
+double edge_log_spread(const PatchNet& patch, const Positions3& bind, const Positions3& x);
 
 }  // namespace skinslide::test

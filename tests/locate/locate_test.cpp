@@ -48,9 +48,12 @@ TEST(Locate, EveryPointIsFoundInATriangleThatHoldsIt) {
     fallbacks += loc[k].fallback;
     EXPECT_GE(w.min(), -kInsideEps) << k;
     EXPECT_NEAR((loc[k].weight[0] * net.points[t[0]] + loc[k].weight[1] * net.points[t[1]] +
-                 loc[k].weight[2] * net.points[t[2]] - pts[k]).norm(), 0, 1e-14);
+                 loc[k].weight[2] * net.points[t[2]] - pts[k])
+                    .norm(),
+                0, 1e-14);
   }
-  // Cells are 3.2 px wide: only slivers that cover no pixel centre near the point need the fallback.
+  // Cells are 3.2 px wide: only slivers that cover no pixel centre near the point need the
+  // fallback.
   EXPECT_LE(fallbacks, 20);
 }
 
@@ -94,6 +97,77 @@ TEST(Locate, APointOutsideTheNetTakesTheNearestTriangleClamped) {
   }
   EXPECT_NEAR(loc[0].weight[1], 1.0, 1e-15);  // the closest point is corner (0.5, 0)
   EXPECT_EQ(loc[1].triangle, 1);
+}
+
+TEST(LocateTopology, NeighboursAcrossEachEdgeAndTrianglesAtEachCorner) {
+  // Square 0-1-2-3 split by the diagonal 0-2, plus a triangle 1-4-2 on the right.
+  const std::vector<Triangle> tris{{0, 1, 2}, {0, 2, 3}, {1, 4, 2}};
+  const TriangleTopology topo = triangle_topology(tris, 5);
+  EXPECT_EQ(topo.neighbour[0], (std::array<Index, 3>{2, 1, -1}));  // opposite 0: edge 1-2
+  EXPECT_EQ(topo.neighbour[1], (std::array<Index, 3>{-1, -1, 0}));
+  EXPECT_EQ(topo.neighbour[2], (std::array<Index, 3>{-1, 0, -1}));
+  EXPECT_EQ(topo.corner_start, (std::vector<Index>{0, 2, 4, 7, 8, 9}));
+  EXPECT_EQ(topo.corner_triangles, (std::vector<Index>{0, 1, 0, 2, 0, 1, 2, 1, 2}));
+}
+
+// The walk, from nodes far from the points, finds what the image finds wherever the image
+// finds a triangle, and a triangle that holds the point everywhere.
+TEST(LocateWalk, AgreesWithTheImageFromAnyStartNode) {
+  const Net net = grid(40, 0.3, 5);
+  const TriangleTopology topo = triangle_topology(net.triangles, Index(net.points.size()));
+  const IdImage img = id_raster(net.points, net.triangles, 256);
+  std::mt19937 rng{6};
+  std::uniform_real_distribution<double> u(0, 1);
+  std::uniform_int_distribution<Index> node(0, Index(net.points.size()) - 1);
+  Positions2 pts;
+  std::vector<Index> start;
+  for (int k = 0; k < 3000; ++k) {
+    pts.emplace_back(u(rng), u(rng));
+    start.push_back(node(rng));
+  }
+  pts.push_back(net.points[100]);  // exactly on a node: six triangles hold it
+  start.push_back(0);
+  const auto walk = locate_points_by_walk(pts, start, net.points, net.triangles, topo, false);
+  const auto image = locate_points(pts, net.points, net.triangles, img);
+  int walked = 0;
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const Triangle& t = net.triangles[walk[k].triangle];
+    EXPECT_GE(barycentric(pts[k], net.points[t[0]], net.points[t[1]], net.points[t[2]]).min(),
+              -kInsideEps);
+    walked += !walk[k].fallback;
+    if (!image[k].fallback) {
+      EXPECT_EQ(walk[k].triangle, image[k].triangle) << k;
+      EXPECT_EQ(walk[k].weight, image[k].weight) << k;
+    }
+  }
+  EXPECT_EQ(walked, int(pts.size()));  // a convex net without folds: every walk arrives
+}
+
+TEST(LocateWalk, ABlockedWalkEndsInTheFallback) {
+  // Two triangles that share no edge: the walk from the first cannot reach the second.
+  const Positions2 net{{0, 0}, {0.5, 0}, {0, 0.5}, {0.9, 0.9}, {1, 0.9}, {0.9, 1}};
+  const std::vector<Triangle> tris{{0, 1, 2}, {3, 4, 5}};
+  const TriangleTopology topo = triangle_topology(tris, 6);
+  const auto loc = locate_points_by_walk({{0.95, 0.95}, {0.1, 0.1}, {0.6, 0.1}}, {0, 0, 0}, net,
+                                         tris, topo, false);
+  EXPECT_TRUE(loc[0].fallback);
+  EXPECT_EQ(loc[0].triangle, 1);
+  EXPECT_FALSE(loc[1].fallback);
+  EXPECT_EQ(loc[1].triangle, 0);
+  EXPECT_TRUE(loc[2].fallback);  // outside the net: the nearest triangle, clamped
+  EXPECT_NEAR(loc[2].weight[1], 1.0, 1e-15);
+}
+
+TEST(LocateWalk, InAFoldedNetTheBestOfTheOverlappingTrianglesWins) {
+  // Triangle 1 is folded under triangle 0; its centroid (0.6, 0.15) has smallest barycentric
+  // 1/3 there and 0.15 in triangle 0. The walk from node 2 arrives in triangle 0 first.
+  const Positions2 net{{0, 0}, {1, 0}, {0, 1}, {0.8, 0.45}};
+  const std::vector<Triangle> tris{{0, 1, 2}, {0, 3, 1}};
+  const TriangleTopology topo = triangle_topology(tris, 4);
+  const Vec2 p(0.6, 0.15);
+  const auto folded = locate_points_by_walk({p}, {2}, net, tris, topo, true);
+  EXPECT_EQ(folded[0].triangle, 1);
+  EXPECT_NEAR(folded[0].weight[0], 1.0 / 3.0, 1e-15);
 }
 
 TEST(Locate, ClosestPointOnADegenerateTriangleIsFinite) {

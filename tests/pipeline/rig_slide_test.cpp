@@ -17,6 +17,7 @@
 #include "pipeline/rig_frames.h"
 #include "pipeline/slide_frame.h"
 #include "pose/animation.h"
+#include "helpers/samples.h"
 #include "slide/transfer.h"
 
 namespace skinslide {
@@ -24,28 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double diagonal(const Positions3& p) {
-  Vec3 lo = p[0], hi = p[0];
-  for (const Vec3& x : p) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  return (hi - lo).norm();
-}
-
-// std of log(L / L_bind) over the patch bars (the measure of README "Choosing the defaults").
-double edge_log_spread(const PatchNet& patch, const Positions3& bind, const Positions3& x) {
-  std::vector<double> r;
-  for (const auto& [a, b] : patch.bars) {
-    const Index u = patch.vertices[a], v = patch.vertices[b];
-    r.push_back(std::log((x[u] - x[v]).norm() / (bind[u] - bind[v]).norm()));
-  }
-  double mean = 0, var = 0;
-  for (double v : r) mean += v;
-  mean /= static_cast<double>(r.size());
-  for (double v : r) var += (v - mean) * (v - mean);
-  return std::sqrt(var / static_cast<double>(r.size()));
-}
+using test::diagonal;
+using test::edge_log_spread;
 
 // The faces touching a welded vertex within `radius` (relative to the bind's diagonal) of a
 // joint's bind-pose origin (the inverse of its inverse bind matrix).

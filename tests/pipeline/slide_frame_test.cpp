@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "helpers/meshes.h"
+#include "helpers/samples.h"
 #include "io/obj_read.h"
 #include "io/patch_file.h"
 #include "unwrap/bar_net.h"
@@ -19,70 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Case {
-  std::string name;
-  PolyMesh bind;
-  std::vector<Index> faces;
-  std::vector<Positions3> frames;
-};
-
-Case load(const std::string& name) {
-  Case c;
-  c.name = name;
-  const std::string dir = test::source_path("data/" + name);
-  c.bind = read_obj(dir + "/bind.obj").mesh;
-  c.faces = selected_faces(read_patch(dir + "/patch.txt"), c.bind.face_count());
-  std::vector<std::string> paths;
-  for (const auto& e : fs::directory_iterator(dir + "/frames")) paths.push_back(e.path().string());
-  std::sort(paths.begin(), paths.end());
-  for (const auto& p : paths) c.frames.push_back(read_obj(p).mesh.positions);
-  return c;
-}
-
-double diagonal(const Positions3& p) {
-  Vec3 lo = p[0], hi = p[0];
-  for (const Vec3& x : p) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  return (hi - lo).norm();
-}
-
-// Exact distance from x to triangle abc in 3D (Ericson, Real-Time Collision Detection 5.1.5).
-double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
-  const double den = 1 / (va + vb + vc);
-  return (p - (a + ab * vb * den + ac * vc * den)).norm();
-}
-
-// std of log(L/L_bind) over the patch bars: how unevenly the patch is stretched.
-double edge_log_spread(const PatchNet& patch, const Positions3& bind, const Positions3& x) {
-  std::vector<double> r;
-  for (const auto& [a, b] : patch.bars) {
-    const Index u = patch.vertices[a], v = patch.vertices[b];
-    r.push_back(std::log((x[u] - x[v]).norm() / (bind[u] - bind[v]).norm()));
-  }
-  double mean = 0, var = 0;
-  for (double v : r) mean += v;
-  mean /= static_cast<double>(r.size());
-  for (double v : r) var += (v - mean) * (v - mean);
-  return std::sqrt(var / static_cast<double>(r.size()));
-}
+using test::diagonal;
+using test::edge_log_spread;
+using test::point_triangle_distance;
 
 struct Mode {
   Density density;
@@ -92,7 +32,7 @@ struct Mode {
 class SampleCases : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SampleCases, DefaultSlideKeepsTheInvariants) {
-  const Case c = load(GetParam());
+  const test::Sample c = test::load_sample(GetParam());
   const BindSetup setup = bind_setup(c.bind, {c.faces}, SlideOptions{});
   ASSERT_FALSE(setup.patches.empty());
   for (const PatchNet& p : setup.patches) EXPECT_EQ(flipped_triangles(p.bind_net, p.triangles), 0);
@@ -130,7 +70,7 @@ TEST_P(SampleCases, DefaultSlideKeepsTheInvariants) {
 }
 
 TEST_P(SampleCases, AnIdentityFrameComesOutUnchanged) {
-  const Case c = load(GetParam());
+  const test::Sample c = test::load_sample(GetParam());
   for (Mode m : {Mode{Density::Inverse, Holes::Fill}, Mode{Density::Uniform, Holes::Fill},
                  Mode{Density::Paper, Holes::Fill}}) {
     SlideOptions o;
@@ -146,7 +86,7 @@ TEST_P(SampleCases, AnIdentityFrameComesOutUnchanged) {
 }
 
 TEST_P(SampleCases, TheSameInputsGiveTheSameBits) {
-  const Case c = load(GetParam());
+  const test::Sample c = test::load_sample(GetParam());
   const BindSetup a = bind_setup(c.bind, {c.faces}, SlideOptions{});
   const BindSetup b = bind_setup(c.bind, {c.faces}, SlideOptions{});
   const Positions3& frame = c.frames.back();
@@ -163,7 +103,7 @@ INSTANTIATE_TEST_SUITE_P(Data, SampleCases, ::testing::Values("elbow", "face"));
 TEST(SlideFrame, SlidingEvensOutTheElbowsStretch) {
   // Frames 3..5 bend the elbow 45, 67.5 and 90 degrees. (At 22.5 degrees, frame 2, the default
   // setting leaves the spread 1.8% wider than the frame's: README "Choosing the defaults".)
-  const Case c = load("elbow");
+  const test::Sample c = test::load_sample("elbow");
   const BindSetup setup = bind_setup(c.bind, {c.faces}, SlideOptions{});
   const PatchNet& patch = setup.patches.at(0);
   for (size_t f = 2; f < c.frames.size(); ++f) {

@@ -97,19 +97,60 @@ TEST(BarNet, DirectAndWarmStartedCgReachEquilibriumOnRandomNets) {
     EXPECT_LT(net_force(g.net, q, direct), 1e-12);
 
     const FrameNetSolver solver(g.net, direct);  // warm start at the exact answer: 0 iterations
-    const FrameNetSolution same = solver.solve(q, {1e-12, 1000});
+    const FrameNetSolution same = solver.solve(q, {FrameNetMethod::Cg, 1e-12, 1000});
     EXPECT_EQ(same.iterations, 0);
     EXPECT_FALSE(same.direct);
 
     std::vector<double> q2 = q;
     for (double& v : q2) v *= 1.0 + 0.2 * (uq(rng) - 0.5);
-    const FrameNetSolution cg = solver.solve(q2, {1e-12, 1000});
+    const FrameNetSolution cg = solver.solve(q2, {FrameNetMethod::Cg, 1e-12, 1000});
     EXPECT_FALSE(cg.direct);
     EXPECT_GT(cg.iterations, 0);
     EXPECT_LE(cg.residual, 1e-12);
     EXPECT_LT(net_force(g.net, q2, cg.positions), 1e-10);
     const Positions2 exact = solve_bar_net(g.net, q2, g.start);
-    for (Index v = 0; v < g.net.node_count; ++v) EXPECT_NEAR((cg.positions[v] - exact[v]).norm(), 0, 1e-9);
+    for (Index v = 0; v < g.net.node_count; ++v)
+      EXPECT_NEAR((cg.positions[v] - exact[v]).norm(), 0, 1e-9);
+  }
+}
+
+TEST(BarNet, CholeskyReachesEquilibriumOnRandomNetsWhateverTheWarmStart) {
+  std::mt19937 rng{1};
+  std::uniform_real_distribution<double> uq(1e-3, 1.0);
+  const GridNet g = grid_net(40);
+  const FrameNetSolver solver(g.net, g.start);  // free nodes start at (0.5, 0.5): ignored
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> q(g.net.bars.size());
+    for (double& v : q) v = uq(rng);
+    const FrameNetSolution s = solver.solve(q, {FrameNetMethod::Cholesky, 1e-12, 1});
+    const FrameNetSolver at_answer(g.net, s.positions);  // a warm start that meets the tolerance
+    EXPECT_EQ(at_answer.solve(q, {}).positions, s.positions);
+    EXPECT_FALSE(s.direct);
+    EXPECT_EQ(s.iterations, 0);
+    EXPECT_LT(net_force(g.net, q, s.positions), 1e-12);
+    for (Index v = 0; v < g.net.node_count; ++v) {
+      if (g.net.fixed[v]) {
+        EXPECT_EQ(s.positions[v], g.start[v]);
+      }
+    }
+    const FrameNetSolution cg = solver.solve(q, {FrameNetMethod::Cg, 1e-13, 5000});
+    for (Index v = 0; v < g.net.node_count; ++v)
+      EXPECT_NEAR((cg.positions[v] - s.positions[v]).norm(), 0, 1e-10);
+  }
+}
+
+TEST(BarNet, CholeskyOfANetWithAnUnanchoredPartIsANumericError) {
+  BarNet net;
+  net.node_count = 5;
+  net.bars = {{0, 1}, {1, 2}, {3, 4}};  // nodes 3 and 4 reach no fixed node
+  net.fixed = {1, 0, 1, 0, 0};
+  const FrameNetSolver solver(net, {{1, 0}, {0, 0}, {0, 1}, {0, 0}, {0, 0}});
+  try {
+    solver.solve({1, 1, 1}, {});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Numeric);
+    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
   }
 }
 
@@ -117,7 +158,7 @@ TEST(BarNet, CgFallsBackToADirectSolveWhenItRunsOutOfIterations) {
   const GridNet g = grid_net(20);
   const std::vector<double> q(g.net.bars.size(), 1.0);
   const FrameNetSolver solver(g.net, g.start);
-  const FrameNetSolution s = solver.solve(q, {1e-14, 2});
+  const FrameNetSolution s = solver.solve(q, {FrameNetMethod::Cg, 1e-14, 2});
   EXPECT_TRUE(s.direct);
   EXPECT_LT(net_force(g.net, q, s.positions), 1e-12);
 }

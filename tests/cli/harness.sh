@@ -1,0 +1,25 @@
+# The shared frame of the end-to-end scripts, sourced by each: paths, a scratch folder removed on
+# exit, `check NAME COMMAND...` (counts a pass when COMMAND succeeds) and `finish NAME`.
+here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
+root=$(cd "$here/../.." && pwd)
+bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+passed=0
+failed=0
+
+check() {  # check NAME COMMAND...
+  local name=$1
+  shift
+  if "$@"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAIL: $name" >&2
+  fi
+}
+
+finish() {  # finish NAME: the tally, and the script's exit status
+  echo "$1: $passed passed, $failed failed"
+  [ "$failed" -eq 0 ]
+}
