@@ -67,11 +67,11 @@ struct CliOptions {
   bool quiet = false;
   bool verbose = false;
   bool no_slide = false;
-  std::string mesh;       // glTF: which mesh (name or index); empty = the only one
-  bool rig = false;       // --animation given: the frames are BIND posed by its skin
-  std::string animation;  // clip name or index
-  double fps = 0;         // 0 = the clip's key times
-  bool keyframes = false; // --keyframes: the default, spelled out
+  std::string mesh;            // glTF: which mesh (name or index); empty = the only one
+  bool rig = false;            // --animation given: the frames are BIND posed by its skin
+  std::string animation;       // clip name or index
+  double fps = 0;              // 0 = the clip's key times
+  bool keyframes = false;      // --keyframes: the default, spelled out
   std::string format = "glb";  // of the slid rig frames: obj or glb
   // Controls (README "Controls")
   std::string weights;
@@ -95,8 +95,9 @@ std::array<Index, 4> parse_corners(const std::string& text) {
   size_t pos = 0;
   for (int j = 0; j < 4; ++j) {
     const size_t comma = j < 3 ? text.find(',', pos) : text.size();
-    const auto id = comma == std::string::npos ? std::nullopt
-                                               : parse_integer(std::string_view(text).substr(pos, comma - pos));
+    const auto id = comma == std::string::npos
+                        ? std::nullopt
+                        : parse_integer(std::string_view(text).substr(pos, comma - pos));
     if (!id || *id < 0 || *id > 2147483647LL || (j < 3 && comma == text.size()))
       throw Error(ErrorKind::Usage, "--corners " + text +
                                         ": expected four vertex ids a,b,c,d (the outer loop's "
@@ -116,7 +117,8 @@ SlideControls slide_controls(const CliOptions& o, const MeshFile& bind, RunRepor
     report.weights = o.weights;
   } else if (!o.weights_color.empty()) {
     if (!bind.obj)
-      throw Error(ErrorKind::Usage, "--weights-from-obj-color needs an OBJ bind; " + o.bind + " is not one");
+      throw Error(ErrorKind::Usage,
+                  "--weights-from-obj-color needs an OBJ bind; " + o.bind + " is not one");
     const int channel = o.weights_color == "r" ? 0 : o.weights_color == "g" ? 1 : 2;
     c.weight = obj_color_weights(o.bind, *bind.obj, channel);
     report.weights = o.bind + " (vertex colour " + o.weights_color + ")";
@@ -187,7 +189,8 @@ void make_output_dir(const std::string& dir) {
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw Error(ErrorKind::Output, dir + ": cannot write: exists and is not a folder");
   fs::create_directories(dir, ec);
-  if (ec) throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
+  if (ec)
+    throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
 }
 
 // Indices of the frames that --frames selects, in list order, by the frame number in each
@@ -286,20 +289,22 @@ FrameResult slide_named(const BindSetup& setup, const CliOptions& o, const Posit
 
 // A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
 // so the slid frame appears only once everything of its frame is written.
-void write_frame_pictures(const BindSetup& setup, const CliOptions& o, const std::string& named_after,
-                          const Positions3& frame_positions, const FrameResult& result) {
+void write_frame_pictures(const BindSetup& setup, const CliOptions& o,
+                          const std::string& named_after, const Positions3& frame_positions,
+                          const FrameResult& result) {
   DumpOptions dump_options;
   dump_options.preview_size = o.preview_size;
   if (!o.dump_dir.empty())
-    write_frame_dumps(o.dump_dir, named_after, setup, frame_positions, result.patches, dump_options);
+    write_frame_dumps(o.dump_dir, named_after, setup, frame_positions, result.patches,
+                      dump_options);
   if (!o.preview_dir.empty())
     write_previews(o.preview_dir, named_after, setup, result.patches, dump_options);
 }
 
 // Reads, checks, slides and writes one frame; returns the log lines for it.
-std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind, const CliOptions& o,
-                                   const std::string& frame_path, const std::string& out_path,
-                                   ReportFrame* record) {
+std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
+                                   const CliOptions& o, const std::string& frame_path,
+                                   const std::string& out_path, ReportFrame* record) {
   auto t0 = std::chrono::steady_clock::now();
   const MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
@@ -367,7 +372,8 @@ std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& 
 
 int run(const CliOptions& o) {
   const cli::Verbosity verbosity =
-      o.quiet ? cli::Verbosity::Quiet : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
+      o.quiet ? cli::Verbosity::Quiet
+              : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
   const auto t_run = std::chrono::steady_clock::now();
   const SlideOptions options = slide_options(o);
   const std::vector<FrameRange> ranges =
@@ -413,23 +419,28 @@ int run(const CliOptions& o) {
                  "skinslide: %s: --no-slide: frames are read, checked and written unchanged\n",
                  o.bind.c_str());
   else if (verbosity != cli::Verbosity::Quiet)
-    std::fprintf(stderr, "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
+    std::fprintf(stderr,
+                 "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
                  o.bind.c_str(), setup.patches.size(), sliding, to_string(options.density).c_str(),
                  to_string(options.holes).c_str());
   if (verbosity == cli::Verbosity::Verbose)
     for (size_t p = 0; p < setup.patches.size(); ++p) {
       const PatchNet& n = setup.patches[p];
-      std::fprintf(stderr, "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n",
-                   p, n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
-                   n.skipped ? " (skipped)" : "", n.bind_net_flips);
+      std::fprintf(
+          stderr,
+          "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n", p,
+          n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
+          n.skipped ? " (skipped)" : "", n.bind_net_flips);
       if (!n.skipped)
         std::fprintf(stderr, "    outer loop from vertex %d%s, corners %d,%d,%d,%d%s, %zu pinned\n",
-                     n.vertices[n.loops[n.outer_loop].front()], n.outer_loop_chosen ? " (chosen)" : "",
-                     n.vertices[n.corners[0]], n.vertices[n.corners[1]], n.vertices[n.corners[2]],
-                     n.vertices[n.corners[3]], n.corners_chosen ? " (chosen)" : "", n.pinned.size());
+                     n.vertices[n.loops[n.outer_loop].front()],
+                     n.outer_loop_chosen ? " (chosen)" : "", n.vertices[n.corners[0]],
+                     n.vertices[n.corners[1]], n.vertices[n.corners[2]], n.vertices[n.corners[3]],
+                     n.corners_chosen ? " (chosen)" : "", n.pinned.size());
     }
   if (verbosity == cli::Verbosity::Verbose && !controls.pins.empty())
-    std::fprintf(stderr, "  %zu pins, %d of them on a boundary loop or outside every patch (ignored)\n",
+    std::fprintf(stderr,
+                 "  %zu pins, %d of them on a boundary loop or outside every patch (ignored)\n",
                  controls.pins.size(), setup.pins_ignored);
   make_output_dir(o.output);
   if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
@@ -506,15 +517,21 @@ int main(int argc, char** argv) {
   CliOptions o;
   CLI::App app{
       "skinslide " + std::string(version()) +
-      ": skin sliding for deformed character meshes (Yang & Zhang 2010, force-density bar nets).\n"
-      "Flattens each patch of the bind mesh and of every frame onto the unit square and moves the\n"
-      "frame's patch vertices back to where the bind's flattening puts them, on the frame's surface.\n"
-      "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, `12-40`,\n"
-      "`pBody.f[12:40]`; whitespace or commas between them, `#` comments. For .gltf/.glb the faces\n"
-      "are the triangles of the mesh's triangle primitives, in primitive order (vertices welded by\n"
-      "position for connectivity only).\n"
-      "A rigged glTF character can be its own frame source:\n"
-      "  skinslide --patch P.txt --animation NAME|INDEX [--fps N | --keyframes] character.glb",
+          ": skin sliding for deformed character meshes (Yang & Zhang 2010, force-density bar "
+          "nets).\n"
+          "Flattens each patch of the bind mesh and of every frame onto the unit square and moves "
+          "the\n"
+          "frame's patch vertices back to where the bind's flattening puts them, on the frame's "
+          "surface.\n"
+          "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, "
+          "`12-40`,\n"
+          "`pBody.f[12:40]`; whitespace or commas between them, `#` comments. For .gltf/.glb the "
+          "faces\n"
+          "are the triangles of the mesh's triangle primitives, in primitive order (vertices "
+          "welded by\n"
+          "position for connectivity only).\n"
+          "A rigged glTF character can be its own frame source:\n"
+          "  skinslide --patch P.txt --animation NAME|INDEX [--fps N | --keyframes] character.glb",
       "skinslide"};
   app.set_version_flag("--version", std::string("skinslide ") + version());
   app.get_formatter()->column_width(36);
@@ -525,7 +542,10 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false)
       ->type_name("FILE")
       ->group(in);
-  app.add_option("bind", o.bind, "Bind mesh (.obj, .gltf, .glb)")->required()->type_name("BIND")->group(in);
+  app.add_option("bind", o.bind, "Bind mesh (.obj, .gltf, .glb)")
+      ->required()
+      ->type_name("BIND")
+      ->group(in);
   auto* frames_opt =
       app.add_option("frames", o.frames,
                      "Deformed frames: the bind mesh with moved vertices (none with --animation)")
@@ -542,12 +562,12 @@ int main(int argc, char** argv) {
                    ->type_name("NAME|INDEX")
                    ->excludes(frames_opt)
                    ->group(gl);
-  auto* fps = app.add_option("--fps", o.fps,
-                             "Sample the clip every 1/N s from its first key to its last")
-                  ->check(CLI::Range(0.001, 100000.0))
-                  ->type_name("N")
-                  ->needs(anim)
-                  ->group(gl);
+  auto* fps =
+      app.add_option("--fps", o.fps, "Sample the clip every 1/N s from its first key to its last")
+          ->check(CLI::Range(0.001, 100000.0))
+          ->type_name("N")
+          ->needs(anim)
+          ->group(gl);
   app.add_flag("--keyframes", o.keyframes, "Sample the clip at its key times (the default)")
       ->needs(anim)
       ->excludes(fps)
@@ -582,9 +602,10 @@ int main(int argc, char** argv) {
       ->group(out);
 
   auto* method = "Method";
-  app.add_option("--density", o.density,
-                 "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
-                 "= Lmin/L, uniform = 1")
+  app.add_option(
+         "--density", o.density,
+         "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
+         "= Lmin/L, uniform = 1")
       ->capture_default_str()
       ->check(CLI::IsMember({"paper", "inverse", "length", "uniform"}))
       ->group(method);
@@ -646,8 +667,9 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run_group);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run_group);
   app.get_option("--quiet")->excludes("--verbose");
-  app.set_config("--config", "", "Read options from a TOML or INI file (`density = \"paper\"`); "
-                                 "the command line overrides it")
+  app.set_config("--config", "",
+                 "Read options from a TOML or INI file (`density = \"paper\"`); "
+                 "the command line overrides it")
       ->type_name("FILE")
       ->check(CLI::ExistingFile)
       ->group(run_group);
@@ -690,8 +712,9 @@ int main(int argc, char** argv) {
       ->type_name("A,B,C,D")
       ->allow_extra_args(false)
       ->group(controls);
-  app.add_option("--outer-loop-vertex", o.outer_loop_vertices,
-                 "A vertex id on the boundary loop to put on the square (repeatable: one per patch)")
+  app.add_option(
+         "--outer-loop-vertex", o.outer_loop_vertices,
+         "A vertex id on the boundary loop to put on the square (repeatable: one per patch)")
       ->type_name("V")
       ->allow_extra_args(false)
       ->check(CLI::Range(0, 2147483647))
@@ -715,7 +738,8 @@ int main(int argc, char** argv) {
           "--no-slide",
           "copies frame files only: not with --animation, --report, --dump or --preview");
     if (!o.rig && o.frames.empty())
-      throw CLI::ValidationError("FRAME...", "give at least one FRAME, or --animation with a rigged glTF BIND");
+      throw CLI::ValidationError("FRAME...",
+                                 "give at least one FRAME, or --animation with a rigged glTF BIND");
     std::string ext = fs::path(o.bind).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return std::tolower(c); });

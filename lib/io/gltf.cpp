@@ -29,7 +29,8 @@ bool has_glb_magic(const std::string& bytes) {
 
 bool ends_with_glb(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == ".glb";
 }
 
@@ -46,8 +47,7 @@ bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::stri
 }
 
 std::string base64(const unsigned char* data, std::size_t n) {
-  static const char kDigits[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  static const char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   out.reserve((n + 2) / 3 * 4);
   std::size_t i = 0;
@@ -87,8 +87,8 @@ bool write_image_unchanged(const std::string*, const std::string*, const tinyglt
                            bool, std::string* out_uri, void* user) {
   const auto* ctx = static_cast<const ImageWriteContext*>(user);
   if (image->as_is) {
-    *out_uri = "data:" + image->mimeType + ";base64," +
-               base64(image->image.data(), image->image.size());
+    *out_uri =
+        "data:" + image->mimeType + ";base64," + base64(image->image.data(), image->image.size());
     return true;
   }
   if (image->uri.empty() || is_data_uri(image->uri)) return false;
@@ -110,11 +110,12 @@ std::string describe_meshes(const tinygltf::Model& model) {
     for (const tinygltf::Primitive& p : model.meshes[m].primitives) {
       const auto it = p.attributes.find("POSITION");
       if (it != p.attributes.end() && it->second >= 0 &&
-          it->second < static_cast<int>(model.accessors.size()) && counted.insert(it->second).second)
+          it->second < static_cast<int>(model.accessors.size()) &&
+          counted.insert(it->second).second)
         vertices += model.accessors[it->second].count;
     }
-    s += "\n  " + std::to_string(m) + " \"" + model.meshes[m].name + "\": " +
-         std::to_string(model.meshes[m].primitives.size()) + " primitive(s), " +
+    s += "\n  " + std::to_string(m) + " \"" + model.meshes[m].name +
+         "\": " + std::to_string(model.meshes[m].primitives.size()) + " primitive(s), " +
          std::to_string(vertices) + " vertices";
   }
   return s;
@@ -131,23 +132,26 @@ int choose_mesh(const tinygltf::Model& model, const std::string& path, const std
   for (std::size_t m = 0; m < model.meshes.size(); ++m) {
     if (model.meshes[m].name != want) continue;
     if (found >= 0)
-      fail(path, "several meshes are named \"" + want + "\"; give its index with --mesh:" +
-                     describe_meshes(model));
+      fail(path, "several meshes are named \"" + want +
+                     "\"; give its index with --mesh:" + describe_meshes(model));
     found = static_cast<int>(m);
   }
   if (found >= 0) return found;
-  if (want.size() < 10 && std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
+  if (want.size() < 10 &&
+      std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); })) {
     const unsigned long m = std::stoul(want);
     if (m < model.meshes.size()) return static_cast<int>(m);
   }
-  fail(path, "no mesh \"" + want + "\" (by name or index); the meshes are:" + describe_meshes(model));
+  fail(path,
+       "no mesh \"" + want + "\" (by name or index); the meshes are:" + describe_meshes(model));
 }
 
 // The triangles of one primitive as element indices of its attributes (glTF 2.0 section 3.7.2.1:
 // strips and fans are expanded to their triangles, in order).
 std::vector<std::array<Index, 3>> primitive_triangles(const tinygltf::Model& model,
                                                       const tinygltf::Primitive& prim,
-                                                      Index vertex_count, const std::string& where) {
+                                                      Index vertex_count,
+                                                      const std::string& where) {
   std::vector<Index> ids;
   if (prim.indices >= 0) {
     const std::string iw = where + ": indices accessor " + std::to_string(prim.indices);
@@ -163,8 +167,9 @@ std::vector<std::array<Index, 3>> primitive_triangles(const tinygltf::Model& mod
     ids.resize(v.size());
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (v[i] >= vertex_count)
-        fail(iw, "index " + std::to_string(i) + " is " + std::to_string(static_cast<long long>(v[i])) +
-                     ", past the " + std::to_string(vertex_count) + " vertices");
+        fail(iw, "index " + std::to_string(i) + " is " +
+                     std::to_string(static_cast<long long>(v[i])) + ", past the " +
+                     std::to_string(vertex_count) + " vertices");
       ids[i] = static_cast<Index>(v[i]);
     }
   } else {
@@ -175,8 +180,7 @@ std::vector<std::array<Index, 3>> primitive_triangles(const tinygltf::Model& mod
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   const std::size_t n = ids.size();
   if (mode == TINYGLTF_MODE_TRIANGLES) {
-    if (n % 3 != 0)
-      fail(where, std::to_string(n) + " triangle-list indices: not a multiple of 3");
+    if (n % 3 != 0) fail(where, std::to_string(n) + " triangle-list indices: not a multiple of 3");
     for (std::size_t i = 0; i < n; i += 3) tris.push_back({ids[i], ids[i + 1], ids[i + 2]});
   } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
     for (std::size_t i = 0; i + 2 < n; ++i)
@@ -225,8 +229,8 @@ void check_attribute(const tinygltf::Model& model, int accessor, int type, Index
   const tinygltf::Accessor& acc = model.accessors[accessor];
   if (acc.type != type) fail(where, "is " + type_name(acc.type) + ", expected " + type_name(type));
   if (count >= 0 && static_cast<Index>(acc.count) != count)
-    fail(where, "has " + std::to_string(acc.count) + " elements, POSITION has " +
-                    std::to_string(count));
+    fail(where,
+         "has " + std::to_string(acc.count) + " elements, POSITION has " + std::to_string(count));
 }
 
 }  // namespace
@@ -249,7 +253,8 @@ MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options)
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     std::replace(err.begin(), err.end(), '\n', ';');
-    fail(path, "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : err));
+    fail(path,
+         "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : err));
   }
   const tinygltf::Model& model = doc->model;
   doc->mesh = choose_mesh(model, path, options.mesh);
@@ -430,7 +435,8 @@ std::map<int, int> store_edits(tinygltf::Model& model, const GltfDocument& doc,
 
 // Serialises `model` to memory and writes it atomically: never a partial file (STYLE.md
 // section 7). `.glb` gives a GLB; anything else a .gltf with one .bin per buffer beside it.
-void write_model(tinygltf::Model model, const std::string& source_path, const std::string& out_path) {
+void write_model(tinygltf::Model model, const std::string& source_path,
+                 const std::string& out_path) {
   const bool binary = ends_with_glb(out_path);
   ImageWriteContext ctx{fs::path(source_path).parent_path(), fs::path(out_path).parent_path()};
   if (ctx.source_dir.empty()) ctx.source_dir = ".";
@@ -465,7 +471,8 @@ void write_model(tinygltf::Model model, const std::string& source_path, const st
     bins.emplace_back((target.parent_path() / name).string(), &data);
   }
   for (const auto& [bin_path, data] : bins)
-    write_file_atomic(bin_path, std::string_view(reinterpret_cast<const char*>(data->data()), data->size()));
+    write_file_atomic(bin_path,
+                      std::string_view(reinterpret_cast<const char*>(data->data()), data->size()));
   write_file_atomic(out_path, text);
 }
 
@@ -474,9 +481,9 @@ void write_model(tinygltf::Model model, const std::string& source_path, const st
 void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std::string& out_path) {
   SKINSLIDE_CHECK(frame.gltf != nullptr, "write_gltf_file on a file that is not glTF");
   const GltfDocument& doc = *frame.gltf;
-  SKINSLIDE_CHECK(slid.vertex.size() == slid.sample.size() &&
-                      slid.vertex.size() == slid.position.size(),
-                  "slid vertices, samples and positions differ in count");
+  SKINSLIDE_CHECK(
+      slid.vertex.size() == slid.sample.size() && slid.vertex.size() == slid.position.size(),
+      "slid vertices, samples and positions differ in count");
   tinygltf::Model model = doc.model;
   const Index raw_total = static_cast<Index>(doc.welded.size());
   const Index welded_total = frame.mesh.vertex_count();
@@ -498,7 +505,8 @@ void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std:
     if (it != edits.end()) return it->second;
     AccessorEdit& e = edits[accessor];
     e.components = components;
-    e.values = gltf_accessor_values(model, accessor, where + ": accessor " + std::to_string(accessor));
+    e.values =
+        gltf_accessor_values(model, accessor, where + ": accessor " + std::to_string(accessor));
     return e;
   };
   std::map<int, std::vector<char>> changed;
@@ -595,15 +603,18 @@ MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positi
     AccessorEdit& e = edits[accessor];
     if (e.values.empty()) {
       e.components = components;
-      e.values = gltf_accessor_values(model, accessor, character.path + ": accessor " + std::to_string(accessor));
+      e.values = gltf_accessor_values(model, accessor,
+                                      character.path + ": accessor " + std::to_string(accessor));
     }
     for (Index i = 0; i < gp.raw_count; ++i)
-      for (int c = 0; c < 3; ++c) e.values[static_cast<std::size_t>(i) * components + c] = v[gp.raw_offset + i][c];
+      for (int c = 0; c < 3; ++c)
+        e.values[static_cast<std::size_t>(i) * components + c] = v[gp.raw_offset + i][c];
     changed[accessor].assign(model.accessors[accessor].count, 1);
   };
   for (const GltfPrimitive& gp : doc->primitives) {
     set_all(gp.position_accessor, 3, gp, raw_positions);
-    if (gp.normal_accessor >= 0 && !raw_normals.empty()) set_all(gp.normal_accessor, 3, gp, raw_normals);
+    if (gp.normal_accessor >= 0 && !raw_normals.empty())
+      set_all(gp.normal_accessor, 3, gp, raw_normals);
   }
   const std::map<int, int> moved = store_edits(model, *doc, edits, changed);
   for (GltfPrimitive& gp : doc->primitives) {

@@ -182,8 +182,8 @@ std::vector<double> gltf_accessor_values(const tinygltf::Model& model, int index
   auto read_element = [&](const unsigned char* p, double* dst) {
     for (int c = 0; c < nc; ++c) {
       const int col = c / layout.rows, row = c % layout.rows;
-      dst[c] = component(p + col * layout.column_stride + row * cs, acc.componentType,
-                         acc.normalized);
+      dst[c] =
+          component(p + col * layout.column_stride + row * cs, acc.componentType, acc.normalized);
     }
   };
 

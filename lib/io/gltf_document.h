@@ -30,8 +30,8 @@ struct GltfPrimitive {
 /// A glTF file as read by read_gltf_file: the model, and how the PolyMesh was built from it.
 struct GltfDocument {
   tinygltf::Model model;
-  bool binary = false;  ///< read from .glb
-  int mesh = -1;        ///< the chosen mesh (index into model.meshes)
+  bool binary = false;                    ///< read from .glb
+  int mesh = -1;                          ///< the chosen mesh (index into model.meshes)
   std::vector<GltfPrimitive> primitives;  ///< the mesh's triangle primitives, in order
   std::vector<Index> welded;              ///< raw id -> welded vertex id (#raw)
   Positions3 raw_positions;               ///< POSITION of every raw vertex (#raw)

@@ -77,7 +77,8 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
   for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
     std::size_t steps = 0;
     for (Index j = rig.nodes[i].parent; j >= 0; j = rig.nodes[j].parent)
-      if (++steps > rig.nodes.size()) fail(path + ": node " + std::to_string(i), "is its own ancestor");
+      if (++steps > rig.nodes.size())
+        fail(path + ": node " + std::to_string(i), "is its own ancestor");
   }
 
   // The skin.
@@ -102,8 +103,8 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
   const std::size_t joint_count = rig.skin.joints.size();
   rig.skin.inverse_bind.assign(joint_count, Mat4::Identity());
   if (skin.inverseBindMatrices >= 0) {
-    const std::string w = skin_where + ": inverseBindMatrices accessor " +
-                          std::to_string(skin.inverseBindMatrices);
+    const std::string w =
+        skin_where + ": inverseBindMatrices accessor " + std::to_string(skin.inverseBindMatrices);
     const std::vector<double> m = gltf_accessor_values(model, skin.inverseBindMatrices, w);
     if (model.accessors[skin.inverseBindMatrices].type != TINYGLTF_TYPE_MAT4 ||
         m.size() < 16 * joint_count)
@@ -128,8 +129,10 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
       if (j == prim.attributes.end() || w == prim.attributes.end())
         fail(where, "has only one of JOINTS_" + std::to_string(set) + " and WEIGHTS_" +
                         std::to_string(set));
-      const std::string jw = where + ": JOINTS_" + std::to_string(set) + " accessor " + std::to_string(j->second);
-      const std::string ww = where + ": WEIGHTS_" + std::to_string(set) + " accessor " + std::to_string(w->second);
+      const std::string jw =
+          where + ": JOINTS_" + std::to_string(set) + " accessor " + std::to_string(j->second);
+      const std::string ww =
+          where + ": WEIGHTS_" + std::to_string(set) + " accessor " + std::to_string(w->second);
       joints.push_back(gltf_accessor_values(model, j->second, jw));
       weights.push_back(gltf_accessor_values(model, w->second, ww));
       if (model.accessors[j->second].type != TINYGLTF_TYPE_VEC4 ||
@@ -142,8 +145,9 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
     if (joints.empty()) fail(where, "has no JOINTS_0/WEIGHTS_0: it cannot be skinned");
     std::vector<double> normals;
     if (all_normals)
-      normals = gltf_accessor_values(model, gp.normal_accessor,
-                                     where + ": NORMAL accessor " + std::to_string(gp.normal_accessor));
+      normals =
+          gltf_accessor_values(model, gp.normal_accessor,
+                               where + ": NORMAL accessor " + std::to_string(gp.normal_accessor));
     for (Index v = 0; v < gp.raw_count; ++v) {
       double total = 0;
       for (std::size_t s = 0; s < joints.size(); ++s)
@@ -178,14 +182,19 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
       const std::string cw = where + " channel " + std::to_string(c);
       if (ch.target_path == "weights" || ch.target_node < 0) continue;
       AnimationChannel out;
-      if (ch.target_path == "translation") out.path = ChannelPath::Translation;
-      else if (ch.target_path == "rotation") out.path = ChannelPath::Rotation;
-      else if (ch.target_path == "scale") out.path = ChannelPath::Scale;
-      else fail(cw, "unknown target path \"" + ch.target_path + "\"");
+      if (ch.target_path == "translation")
+        out.path = ChannelPath::Translation;
+      else if (ch.target_path == "rotation")
+        out.path = ChannelPath::Rotation;
+      else if (ch.target_path == "scale")
+        out.path = ChannelPath::Scale;
+      else
+        fail(cw, "unknown target path \"" + ch.target_path + "\"");
       if (ch.target_node >= static_cast<int>(model.nodes.size()))
         fail(cw, "target node " + std::to_string(ch.target_node) + " does not exist");
       if (rig.nodes[ch.target_node].rest.has_matrix)
-        fail(cw, "animates node " + std::to_string(ch.target_node) + ", which has a matrix (glTF allows only TRS there)");
+        fail(cw, "animates node " + std::to_string(ch.target_node) +
+                     ", which has a matrix (glTF allows only TRS there)");
       out.node = ch.target_node;
       if (ch.sampler < 0 || ch.sampler >= static_cast<int>(src.samplers.size()))
         fail(cw, "sampler " + std::to_string(ch.sampler) + " does not exist");
@@ -193,14 +202,15 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
       const std::string sw = where + " sampler " + std::to_string(ch.sampler);
       out.sampler.interpolation = interpolation(s.interpolation, sw);
       out.sampler.width = out.path == ChannelPath::Rotation ? 4 : 3;
-      out.sampler.times = gltf_accessor_values(model, s.input, sw + ": input accessor " + std::to_string(s.input));
-      out.sampler.values = gltf_accessor_values(model, s.output, sw + ": output accessor " + std::to_string(s.output));
+      out.sampler.times =
+          gltf_accessor_values(model, s.input, sw + ": input accessor " + std::to_string(s.input));
+      out.sampler.values = gltf_accessor_values(
+          model, s.output, sw + ": output accessor " + std::to_string(s.output));
       const std::size_t keys = out.sampler.times.size();
       const std::size_t per_key =
           out.sampler.width * (out.sampler.interpolation == Interpolation::CubicSpline ? 3 : 1);
       if (keys == 0) fail(sw, "has no keys");
-      if (model.accessors[s.input].type != TINYGLTF_TYPE_SCALAR)
-        fail(sw, "input must be SCALAR");
+      if (model.accessors[s.input].type != TINYGLTF_TYPE_SCALAR) fail(sw, "input must be SCALAR");
       if (gltf_component_count(model.accessors[s.output].type) != out.sampler.width ||
           out.sampler.values.size() != keys * per_key)
         fail(sw, "output has " + std::to_string(out.sampler.values.size()) + " numbers; " +
@@ -209,7 +219,8 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
       for (std::size_t k = 1; k < keys; ++k)
         if (!(out.sampler.times[k] > out.sampler.times[k - 1]))
           fail(sw, "key times are not strictly increasing at key " + std::to_string(k));
-      anim.start = first ? out.sampler.times.front() : std::min(anim.start, out.sampler.times.front());
+      anim.start =
+          first ? out.sampler.times.front() : std::min(anim.start, out.sampler.times.front());
       anim.end = first ? out.sampler.times.back() : std::max(anim.end, out.sampler.times.back());
       first = false;
       anim.channels.push_back(std::move(out));
@@ -222,20 +233,22 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
 Index find_animation(const Rig& rig, const std::string& want, const std::string& path) {
   std::string list;
   for (std::size_t a = 0; a < rig.animations.size(); ++a)
-    list += "\n  " + std::to_string(a) + " \"" + rig.animations[a].name + "\": " +
-            seconds(rig.animations[a].start) + " to " + seconds(rig.animations[a].end);
+    list += "\n  " + std::to_string(a) + " \"" + rig.animations[a].name +
+            "\": " + seconds(rig.animations[a].start) + " to " + seconds(rig.animations[a].end);
   if (rig.animations.empty()) throw Error(ErrorKind::Usage, path + ": the file has no animation");
   if (want.empty()) {
     if (rig.animations.size() == 1) return 0;
-    throw Error(ErrorKind::Usage, path + ": " + std::to_string(rig.animations.size()) +
-                                      " animations; choose one with --animation NAME|INDEX:" + list);
+    throw Error(ErrorKind::Usage,
+                path + ": " + std::to_string(rig.animations.size()) +
+                    " animations; choose one with --animation NAME|INDEX:" + list);
   }
   for (std::size_t a = 0; a < rig.animations.size(); ++a)
     if (rig.animations[a].name == want) return static_cast<Index>(a);
   if (std::all_of(want.begin(), want.end(), [](unsigned char c) { return std::isdigit(c); }) &&
       want.size() < 9 && std::stoul(want) < rig.animations.size())
     return static_cast<Index>(std::stoul(want));
-  throw Error(ErrorKind::Usage, path + ": no animation \"" + want + "\"; the animations are:" + list);
+  throw Error(ErrorKind::Usage,
+              path + ": no animation \"" + want + "\"; the animations are:" + list);
 }
 
 }  // namespace skinslide

@@ -47,7 +47,8 @@ void require_same_topology(const MeshFile& bind, const MeshFile& frame) {
   if (a.vertex_count() != b.vertex_count())
     throw_input(frame.path, 0,
                 "has " + std::to_string(b.vertex_count()) + " vertices; the bind (" + bind.path +
-                    ") has " + std::to_string(a.vertex_count()) + ": a frame must be the bind mesh deformed");
+                    ") has " + std::to_string(a.vertex_count()) +
+                    ": a frame must be the bind mesh deformed");
   const Index n = std::min(a.face_count(), b.face_count());
   for (Index f = 0; f < n; ++f) {
     if (a.face_size(f) == b.face_size(f) &&

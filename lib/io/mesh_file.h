@@ -24,9 +24,9 @@ struct MeshReadOptions {
 struct MeshFile {
   std::string path;
   MeshFormat format = MeshFormat::Obj;
-  PolyMesh mesh;                     ///< the surface skinslide works on
-  std::vector<long> face_lines;      ///< OBJ: source line of each face (1-based); else empty
-  std::shared_ptr<const ObjText> obj;        ///< set for OBJ
+  PolyMesh mesh;                       ///< the surface skinslide works on
+  std::vector<long> face_lines;        ///< OBJ: source line of each face (1-based); else empty
+  std::shared_ptr<const ObjText> obj;  ///< set for OBJ
   std::shared_ptr<const GltfDocument> gltf;  ///< set for glTF / GLB
   std::string where_face(Index face) const;  ///< "bind.obj:301" or "bind.glb: triangle 57"
 };

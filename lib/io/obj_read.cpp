@@ -119,13 +119,15 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
           v = nv + v;
           if (v < 0)
             throw_input(path, line,
-                        "relative face index " + std::to_string(*idx) + " reaches before vertex 1 (" +
-                            std::to_string(nv) + " vertices defined so far)");
+                        "relative face index " + std::to_string(*idx) +
+                            " reaches before vertex 1 (" + std::to_string(nv) +
+                            " vertices defined so far)");
         } else {
           if (v > nv) forward_refs.emplace_back(line, v);
           v -= 1;
         }
-        if (v > 0x7fffffffLL) throw_input(path, line, "face index " + std::to_string(*idx) + " is too large");
+        if (v > 0x7fffffffLL)
+          throw_input(path, line, "face index " + std::to_string(*idx) + " is too large");
         face.push_back(static_cast<Index>(v));
       }
       Index dup = 0;

@@ -5,7 +5,8 @@
 
 namespace skinslide {
 
-std::string rewrite_obj(const ObjText& obj, const Positions3& original, const Positions3& positions) {
+std::string rewrite_obj(const ObjText& obj, const Positions3& original,
+                        const Positions3& positions) {
   SKINSLIDE_CHECK(original.size() == obj.coordinate_spans.size(), "vertex count of OBJ text");
   SKINSLIDE_CHECK(positions.size() == original.size(), "vertex count of new positions");
   std::string out;

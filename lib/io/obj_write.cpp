@@ -10,10 +10,12 @@ std::string obj_text(const PolyMesh& mesh, const Positions3& positions, const st
                   "one position per vertex");
   std::string s = "# skinslide: " + source + "\n";
   for (const Vec3& p : positions)
-    s += "v " + format_double(p.x()) + " " + format_double(p.y()) + " " + format_double(p.z()) + "\n";
+    s += "v " + format_double(p.x()) + " " + format_double(p.y()) + " " + format_double(p.z()) +
+         "\n";
   for (Index f = 0; f < mesh.face_count(); ++f) {
     s += "f";
-    for (Index k = 0; k < mesh.face_size(f); ++k) s += " " + std::to_string(mesh.face_begin(f)[k] + 1);
+    for (Index k = 0; k < mesh.face_size(f); ++k)
+      s += " " + std::to_string(mesh.face_begin(f)[k] + 1);
     s += "\n";
   }
   return s;

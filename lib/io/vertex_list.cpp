@@ -53,7 +53,8 @@ void for_each_line(const std::string& path, const std::string& text, F&& f) {
 double weight_value(const std::string& path, long line, std::string_view t) {
   const auto w = parse_double(t);
   if (!w) throw_input(path, line, quoted(t) + " is not a number");
-  if (!(*w >= 0 && *w <= 1)) throw_input(path, line, "weight " + std::string(t) + " is outside [0, 1]");
+  if (!(*w >= 0 && *w <= 1))
+    throw_input(path, line, "weight " + std::string(t) + " is outside [0, 1]");
   return *w;
 }
 
@@ -64,7 +65,8 @@ std::optional<long long> vertex_id(std::string_view t) {
 
 }  // namespace
 
-std::vector<double> parse_weights(const std::string& path, const std::string& text, Index vertex_count) {
+std::vector<double> parse_weights(const std::string& path, const std::string& text,
+                                  Index vertex_count) {
   enum class Layout { Unknown, Dense, Pairs } layout = Layout::Unknown;
   std::vector<double> w;
   std::vector<long> listed_at;  // pairs: line that set each vertex, 0 = not listed
@@ -83,37 +85,44 @@ std::vector<double> parse_weights(const std::string& path, const std::string& te
     }
     if (layout == Layout::Dense) {
       if (tok.size() != 1)
-        throw_input(path, line, "has " + std::to_string(tok.size()) + " numbers; line " +
-                                    std::to_string(first_line) +
-                                    " starts a one-weight-a-line file (vertex order)");
+        throw_input(path, line,
+                    "has " + std::to_string(tok.size()) + " numbers; line " +
+                        std::to_string(first_line) +
+                        " starts a one-weight-a-line file (vertex order)");
       if (static_cast<Index>(w.size()) == vertex_count)
-        throw_input(path, line, "more weights than the bind's " + std::to_string(vertex_count) + " vertices");
+        throw_input(path, line,
+                    "more weights than the bind's " + std::to_string(vertex_count) + " vertices");
       w.push_back(weight_value(path, line, tok[0]));
     } else if (layout == Layout::Pairs) {
       if (tok.size() != 2)
-        throw_input(path, line, "has " + std::to_string(tok.size()) + " numbers; line " +
-                                    std::to_string(first_line) + " starts an 'index weight' file");
+        throw_input(path, line,
+                    "has " + std::to_string(tok.size()) + " numbers; line " +
+                        std::to_string(first_line) + " starts an 'index weight' file");
       const auto id = vertex_id(tok[0]);
       if (!id) throw_input(path, line, quoted(tok[0]) + " is not a vertex id");
       if (*id >= vertex_count)
-        throw_input(path, line, "vertex " + std::string(tok[0]) + " is out of range (the bind has " +
-                                    std::to_string(vertex_count) + " vertices, numbered 0 to " +
-                                    std::to_string(vertex_count - 1) + ")");
+        throw_input(path, line,
+                    "vertex " + std::string(tok[0]) + " is out of range (the bind has " +
+                        std::to_string(vertex_count) + " vertices, numbered 0 to " +
+                        std::to_string(vertex_count - 1) + ")");
       if (listed_at[*id])
-        throw_input(path, line, "vertex " + std::string(tok[0]) + " is already given a weight on line " +
-                                    std::to_string(listed_at[*id]));
+        throw_input(path, line,
+                    "vertex " + std::string(tok[0]) + " is already given a weight on line " +
+                        std::to_string(listed_at[*id]));
       w[*id] = weight_value(path, line, tok[1]);
       listed_at[*id] = line;
     } else {
-      throw_input(path, line, "expected one weight a line or 'index weight' pairs; found " +
-                                  std::to_string(tok.size()) + " numbers");
+      throw_input(path, line,
+                  "expected one weight a line or 'index weight' pairs; found " +
+                      std::to_string(tok.size()) + " numbers");
     }
   });
   if (layout == Layout::Unknown) throw_input(path, 0, "holds no weights");
   if (layout == Layout::Dense && static_cast<Index>(w.size()) != vertex_count)
-    throw_input(path, 0, "has " + std::to_string(w.size()) + " weights; the bind has " +
-                             std::to_string(vertex_count) +
-                             " vertices (one weight a line in vertex order, or 'index weight' pairs)");
+    throw_input(path, 0,
+                "has " + std::to_string(w.size()) + " weights; the bind has " +
+                    std::to_string(vertex_count) +
+                    " vertices (one weight a line in vertex order, or 'index weight' pairs)");
   return w;
 }
 
@@ -138,14 +147,16 @@ std::vector<Index> parse_vertex_list(const std::string& path, const std::string&
       const auto a = vertex_id(body.substr(0, s));
       const auto b = s == std::string_view::npos ? a : vertex_id(body.substr(s + 1));
       if (!a || !b)
-        throw_input(path, line, "unknown token " + quoted(tok) +
-                                    ": expected a vertex id (12), a range (12-40) or a Maya "
-                                    "component (pBody.vtx[12:40])");
+        throw_input(path, line,
+                    "unknown token " + quoted(tok) +
+                        ": expected a vertex id (12), a range (12-40) or a Maya "
+                        "component (pBody.vtx[12:40])");
       if (*a > *b) throw_input(path, line, "range " + quoted(tok) + " runs backwards");
       if (*b >= vertex_count)
-        throw_input(path, line, "vertex " + std::to_string(*b) + " is out of range (the bind has " +
-                                    std::to_string(vertex_count) + " vertices, numbered 0 to " +
-                                    std::to_string(vertex_count - 1) + ")");
+        throw_input(path, line,
+                    "vertex " + std::to_string(*b) + " is out of range (the bind has " +
+                        std::to_string(vertex_count) + " vertices, numbered 0 to " +
+                        std::to_string(vertex_count - 1) + ")");
       for (long long v = *a; v <= *b; ++v) in[v] = 1;
     }
   });
@@ -182,14 +193,16 @@ std::vector<double> obj_color_weights(const std::string& path, const ObjText& ob
       tok.push_back(rest.substr(s, i - s));
     }
     if (tok.size() != 3)
-      throw_input(path, line, "vertex " + std::to_string(v) +
-                                  " has no colour: expected 'v x y z r g b' for slide weights from "
-                                  "vertex colours");
+      throw_input(path, line,
+                  "vertex " + std::to_string(v) +
+                      " has no colour: expected 'v x y z r g b' for slide weights from "
+                      "vertex colours");
     const auto c = parse_double(tok[channel]);
     if (!c) throw_input(path, line, "colour " + quoted(tok[channel]) + " is not a number");
     if (!(*c >= 0 && *c <= 1))
-      throw_input(path, line, "colour " + std::string(tok[channel]) +
-                                  " is outside [0, 1] (slide weights are colours in 0..1)");
+      throw_input(path, line,
+                  "colour " + std::string(tok[channel]) +
+                      " is outside [0, 1] (slide weights are colours in 0..1)");
     w[v] = *c;
   }
   return w;

@@ -21,7 +21,8 @@ struct ObjText;  // io/obj_read.h
 /// \throw Error(Input) "path:line: what" for a token that is not a number, a weight outside
 ///        [0, 1] or not finite, an id out of range or listed twice, a line of the other layout,
 ///        the wrong number of lines (dense layout), a file with no weights.
-std::vector<double> parse_weights(const std::string& path, const std::string& text, Index vertex_count);
+std::vector<double> parse_weights(const std::string& path, const std::string& text,
+                                  Index vertex_count);
 
 /// Reads and parses a slide-weight file (see parse_weights).
 std::vector<double> read_weights(const std::string& path, Index vertex_count);

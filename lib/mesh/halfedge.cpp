@@ -13,10 +13,12 @@ struct Traits : OpenMesh::DefaultTraits {};
 using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<Traits>;
 }  // namespace
 
-std::vector<std::vector<Index>> boundary_loops(const PolyMesh& mesh, const std::vector<Index>& faces) {
+std::vector<std::vector<Index>> boundary_loops(const PolyMesh& mesh,
+                                               const std::vector<Index>& faces) {
   // Local vertex ids: the sorted mesh ids of the faces' vertices.
   std::vector<Index> verts;
-  for (Index f : faces) verts.insert(verts.end(), mesh.face_begin(f), mesh.face_begin(f) + mesh.face_size(f));
+  for (Index f : faces)
+    verts.insert(verts.end(), mesh.face_begin(f), mesh.face_begin(f) + mesh.face_size(f));
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
   auto local = [&](Index v) {

@@ -14,6 +14,7 @@ namespace skinslide {
 /// \pre the faces form an edge-manifold, consistently oriented surface whose vertices each have
 ///      one fan of faces (mesh/patches.h checks this first, with messages for the user).
 /// \throw Error(Internal) when OpenMesh refuses a face despite those checks.
-std::vector<std::vector<Index>> boundary_loops(const PolyMesh& mesh, const std::vector<Index>& faces);
+std::vector<std::vector<Index>> boundary_loops(const PolyMesh& mesh,
+                                               const std::vector<Index>& faces);
 
 }  // namespace skinslide

@@ -79,7 +79,8 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
   for (size_t s = 0; s < he.size();) {
     size_t e = s;
     while (e < he.size() && he[e].lo == he[s].lo && he[e].hi == he[s].hi) ++e;
-    const std::string edge = "edge (" + std::to_string(he[s].lo) + ", " + std::to_string(he[s].hi) + ")";
+    const std::string edge =
+        "edge (" + std::to_string(he[s].lo) + ", " + std::to_string(he[s].hi) + ")";
     if (e - s > 2)
       throw_patch(edge + " is shared by " + std::to_string(e - s) + " selected faces: " +
                   name_face(faces[he[s].face]) + ", " + name_face(faces[he[s + 1].face]) + ", " +
@@ -91,7 +92,8 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
       const HalfEdge& b = he[s + 1];
       if (a.from == b.from)
         throw_patch(name_face(faces[a.face]) + " and " + name_face(faces[b.face]) + " traverse " +
-                    edge + " in the same direction: the patch is not consistently oriented "
+                    edge +
+                    " in the same direction: the patch is not consistently oriented "
                     "(a flipped face, or a non-orientable patch such as a Moebius strip)");
       face_sets.join(a.face, b.face);
       // a: from->to at slots (corner, corner+1); b runs to->from at (corner, corner+1).
@@ -147,12 +149,13 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
     const Index c = std::get<0>(fans[s]);
     const Index v = std::get<1>(fans[s]);
     if (nroots > 1)
-      throw_patch("vertex " + std::to_string(v) + " is non-manifold: the selected faces around it (" +
+      throw_patch("vertex " + std::to_string(v) +
+                  " is non-manifold: the selected faces around it (" +
                   name_face(std::get<3>(fans[s])) + ", ...) form " + std::to_string(nroots) +
                   " separate fans (a bow-tie); select the faces between them or split the patch");
     out.components[c].vertices.push_back(v);
-    const bool on_boundary =
-        std::binary_search(boundary_vertices.begin(), boundary_vertices.end(), std::make_pair(c, v));
+    const bool on_boundary = std::binary_search(boundary_vertices.begin(), boundary_vertices.end(),
+                                                std::make_pair(c, v));
     out.vertex_roles.emplace_back(v, c, on_boundary);
     s = e;
   }
@@ -205,7 +208,8 @@ std::vector<PatchComponent> patch_components(const PolyMesh& mesh,
     s = e;
   }
   std::stable_sort(all.begin(), all.end(), [](const PatchComponent& a, const PatchComponent& b) {
-    return std::tie(a.vertices.front(), a.faces.front()) < std::tie(b.vertices.front(), b.faces.front());
+    return std::tie(a.vertices.front(), a.faces.front()) <
+           std::tie(b.vertices.front(), b.faces.front());
   });
   return all;
 }

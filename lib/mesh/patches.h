@@ -13,10 +13,10 @@ namespace skinslide {
 /// One connected component of a selection: faces connected through shared edges (faces that touch
 /// only at a vertex are separate components, and such a vertex stays fixed in both).
 struct PatchComponent {
-  Index selection = 0;                     ///< which selection (--patch file) it came from
-  std::vector<Index> faces;                ///< mesh face ids, ascending
-  std::vector<Index> vertices;             ///< mesh vertex ids, ascending
-  std::vector<std::vector<Index>> loops;   ///< boundary loops (mesh ids), see boundary_loops()
+  Index selection = 0;                    ///< which selection (--patch file) it came from
+  std::vector<Index> faces;               ///< mesh face ids, ascending
+  std::vector<Index> vertices;            ///< mesh vertex ids, ascending
+  std::vector<std::vector<Index>> loops;  ///< boundary loops (mesh ids), see boundary_loops()
 };
 
 /// Names a face in messages, e.g. "face 57 (bind.obj:301)".

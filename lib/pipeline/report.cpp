@@ -29,7 +29,8 @@ std::string quoted(const std::string& s) {
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          std::snprintf(buf, sizeof buf, "\\u%04x",
+                        static_cast<unsigned>(static_cast<unsigned char>(c)));
           out += buf;
         } else {
           out += c;
@@ -100,33 +101,33 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
                .add("locate", quoted(to_string(o.locate)))
                .add("lookup_size", number(static_cast<long long>(o.lookup_size)))
                .str());
-  root.add("controls", Object(2)
-                           .add("weights", run.weights.empty() ? "null" : quoted(run.weights))
-                           .add("strength", number(run.strength))
-                           .add("pins", run.pins.empty() ? "null" : quoted(run.pins))
-                           .add("pins_requested", number(static_cast<long long>(run.pins_requested)))
-                           .add("pins_ignored", number(static_cast<long long>(setup.pins_ignored)))
-                           .str());
+  root.add("controls",
+           Object(2)
+               .add("weights", run.weights.empty() ? "null" : quoted(run.weights))
+               .add("strength", number(run.strength))
+               .add("pins", run.pins.empty() ? "null" : quoted(run.pins))
+               .add("pins_requested", number(static_cast<long long>(run.pins_requested)))
+               .add("pins_ignored", number(static_cast<long long>(setup.pins_ignored)))
+               .str());
   std::vector<std::string> patches;
   for (const PatchNet& p : setup.patches) {
     std::vector<std::string> corners;
     if (!p.skipped)
       for (Index c : p.corners) corners.push_back(number(static_cast<long long>(p.vertices[c])));
-    patches.push_back(
-        Object(4)
-            .add("faces", number(static_cast<long long>(p.faces.size())))
-            .add("vertices", number(static_cast<long long>(p.vertices.size())))
-            .add("free", number(static_cast<long long>(p.free_vertices.size())))
-            .add("pinned", number(static_cast<long long>(p.pinned.size())))
-            .add("loops", number(static_cast<long long>(p.loops.size())))
-            .add("outer_loop_start",
-                 number(static_cast<long long>(p.vertices[p.loops[p.outer_loop].front()])))
-            .add("outer_loop_chosen", boolean(p.outer_loop_chosen))
-            .add("corners", inline_array(corners))
-            .add("corners_chosen", boolean(p.corners_chosen))
-            .add("skipped", boolean(p.skipped))
-            .add("bind_net_flips", number(static_cast<long long>(p.bind_net_flips)))
-            .str());
+    patches.push_back(Object(4)
+                          .add("faces", number(static_cast<long long>(p.faces.size())))
+                          .add("vertices", number(static_cast<long long>(p.vertices.size())))
+                          .add("free", number(static_cast<long long>(p.free_vertices.size())))
+                          .add("pinned", number(static_cast<long long>(p.pinned.size())))
+                          .add("loops", number(static_cast<long long>(p.loops.size())))
+                          .add("outer_loop_start", number(static_cast<long long>(
+                                                       p.vertices[p.loops[p.outer_loop].front()])))
+                          .add("outer_loop_chosen", boolean(p.outer_loop_chosen))
+                          .add("corners", inline_array(corners))
+                          .add("corners_chosen", boolean(p.corners_chosen))
+                          .add("skipped", boolean(p.skipped))
+                          .add("bind_net_flips", number(static_cast<long long>(p.bind_net_flips)))
+                          .str());
   }
   root.add("patches", array(patches, 2));
 

@@ -24,16 +24,16 @@ struct ReportFrame {
 
 /// What the report says about a run besides the frames.
 struct RunReport {
-  std::string bind;                 ///< the bind's file
+  std::string bind;  ///< the bind's file
   std::vector<std::string> patch_files;
-  std::string weights;              ///< where the slide weights came from; empty = none
+  std::string weights;  ///< where the slide weights came from; empty = none
   double strength = 1;
-  std::string pins;                 ///< the pin file; empty = none
-  Index pins_requested = 0;         ///< distinct ids in the pin file
+  std::string pins;          ///< the pin file; empty = none
+  Index pins_requested = 0;  ///< distinct ids in the pin file
   std::vector<ReportFrame> frames;
-  bool timings = true;              ///< write the "timings" object
-  double bind_seconds = 0;          ///< reading the bind and patch files, building the set-up
-  double wall_seconds = 0;          ///< the whole run
+  bool timings = true;      ///< write the "timings" object
+  double bind_seconds = 0;  ///< reading the bind and patch files, building the set-up
+  double wall_seconds = 0;  ///< the whole run
 };
 
 /// The report as JSON text (UTF-8, 2-space indent, final newline). Layout:

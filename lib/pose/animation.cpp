@@ -38,7 +38,8 @@ Eigen::VectorXd sample(const AnimationSampler& sampler, double t, bool is_rotati
   SKINSLIDE_CHECK(sampler.values.size() == n * w * (cubic ? 3 : 1), "sampler values size");
   // Key k's value: for CUBICSPLINE the middle of (in-tangent, value, out-tangent).
   auto value = [&](std::size_t k) {
-    return Eigen::Map<const Eigen::VectorXd>(sampler.values.data() + (cubic ? 3 * k + 1 : k) * w, w);
+    return Eigen::Map<const Eigen::VectorXd>(sampler.values.data() + (cubic ? 3 * k + 1 : k) * w,
+                                             w);
   };
   auto finish = [&](Eigen::VectorXd v) {
     if (is_rotation && v.norm() > 0) v.normalize();
@@ -47,8 +48,8 @@ Eigen::VectorXd sample(const AnimationSampler& sampler, double t, bool is_rotati
   if (t <= times.front() || n == 1) return finish(value(0));
   if (t >= times.back()) return finish(value(n - 1));
   // k: the last key with times[k] <= t, so that t is in [t_k, t_k+1).
-  const std::size_t k = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) -
-                                                 times.begin()) - 1;
+  const std::size_t k =
+      static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
   const double td = times[k + 1] - times[k];
   const double s = (t - times[k]) / td;
   switch (sampler.interpolation) {
@@ -69,10 +70,9 @@ Eigen::VectorXd sample(const AnimationSampler& sampler, double t, bool is_rotati
         return Eigen::Map<const Eigen::VectorXd>(sampler.values.data() + (3 * j) * w, w);
       };
       const double s2 = s * s, s3 = s2 * s;
-      const Eigen::VectorXd v = (2 * s3 - 3 * s2 + 1) * value(k) +
-                                td * (s3 - 2 * s2 + s) * out_tangent(k) +
-                                (-2 * s3 + 3 * s2) * value(k + 1) +
-                                td * (s3 - s2) * in_tangent(k + 1);
+      const Eigen::VectorXd v =
+          (2 * s3 - 3 * s2 + 1) * value(k) + td * (s3 - 2 * s2 + s) * out_tangent(k) +
+          (-2 * s3 + 3 * s2) * value(k + 1) + td * (s3 - s2) * in_tangent(k + 1);
       return finish(v);
     }
   }

@@ -23,7 +23,8 @@ Quat slerp(const Quat& a, const Quat& b, double s);
 
 /// Local transform of every node at time `t` of `animation`: the rest transforms, with each
 /// channel's path replaced by its sampled value. `animation` null = the rest pose.
-std::vector<NodeTransform> animated_transforms(const Rig& rig, const Animation* animation, double t);
+std::vector<NodeTransform> animated_transforms(const Rig& rig, const Animation* animation,
+                                               double t);
 
 /// Times start, start + 1/fps, ... up to `end` (a time within 1e-9 s of `end` counts as `end`).
 /// \pre fps > 0

@@ -26,7 +26,7 @@ struct NodeTransform {
 
 struct RigNode {
   std::string name;
-  Index parent = -1;  ///< -1 for a root; parents may come after children in the array
+  Index parent = -1;   ///< -1 for a root; parents may come after children in the array
   NodeTransform rest;  ///< the transform stored in the file (the pose without animation)
 };
 
@@ -68,18 +68,18 @@ struct AnimationChannel {
 struct Animation {
   std::string name;  ///< may be empty (three of the four shared characters have no names)
   std::vector<AnimationChannel> channels;  ///< morph-weight channels are not kept
-  double start = 0;  ///< earliest key time over all channels
-  double end = 0;    ///< latest key time
+  double start = 0;                        ///< earliest key time over all channels
+  double end = 0;                          ///< latest key time
 };
 
 /// Everything needed to pose the character's vertices.
 struct Rig {
   std::vector<RigNode> nodes;
-  Index mesh_node = -1;      ///< the node that instantiates the mesh with `skin`
+  Index mesh_node = -1;  ///< the node that instantiates the mesh with `skin`
   Skin skin;
-  Influences influences;     ///< one entry per raw vertex
-  Positions3 bind_positions; ///< raw vertex positions as stored (the bind pose)
-  Positions3 bind_normals;   ///< raw normals as stored; empty when the mesh has none
+  Influences influences;      ///< one entry per raw vertex
+  Positions3 bind_positions;  ///< raw vertex positions as stored (the bind pose)
+  Positions3 bind_normals;    ///< raw normals as stored; empty when the mesh has none
   std::vector<Animation> animations;
 };
 

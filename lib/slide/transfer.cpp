@@ -10,8 +10,8 @@ Vec3 surface_point(const PolyMesh& mesh, const Positions3& positions, const Surf
   Vec3 p = Vec3::Zero();
   for (int k = 0; k < 3; ++k) p += sample.weight[k] * positions[fv[sample.corner[k]]];
   if (!p.allFinite())
-    throw Error(ErrorKind::Numeric, "a slid position is not finite (face " +
-                                        std::to_string(sample.face) + ")");
+    throw Error(ErrorKind::Numeric,
+                "a slid position is not finite (face " + std::to_string(sample.face) + ")");
   return p;
 }
 

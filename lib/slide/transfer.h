@@ -21,11 +21,11 @@ struct SurfaceSample {
 
 /// The vertices a slide moved, ascending by vertex id, with where each landed.
 struct SlidVertices {
-  std::vector<Index> vertex;           ///< mesh vertex ids, ascending
-  std::vector<SurfaceSample> sample;   ///< one per entry of `vertex`
-  Positions3 position;                 ///< output 3D position, one per entry of `vertex`; with a
-                                       ///< slide weight w < 1 it lies between the frame position
-                                       ///< and `sample`'s point, off the surface
+  std::vector<Index> vertex;          ///< mesh vertex ids, ascending
+  std::vector<SurfaceSample> sample;  ///< one per entry of `vertex`
+  Positions3 position;                ///< output 3D position, one per entry of `vertex`; with a
+                                      ///< slide weight w < 1 it lies between the frame position
+                                      ///< and `sample`'s point, off the surface
 };
 
 /// The 3D point of `sample` on `mesh` (positions from `positions`, faces from `mesh`).

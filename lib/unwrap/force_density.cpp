@@ -7,9 +7,11 @@
 
 namespace skinslide {
 
-std::vector<double> bar_lengths(const Positions3& points, const std::vector<std::array<Index, 2>>& bars) {
+std::vector<double> bar_lengths(const Positions3& points,
+                                const std::vector<std::array<Index, 2>>& bars) {
   std::vector<double> lengths(bars.size());
-  for (size_t i = 0; i < bars.size(); ++i) lengths[i] = (points[bars[i][0]] - points[bars[i][1]]).norm();
+  for (size_t i = 0; i < bars.size(); ++i)
+    lengths[i] = (points[bars[i][0]] - points[bars[i][1]]).norm();
   return lengths;
 }
 
@@ -28,7 +30,8 @@ std::vector<double> force_densities(const std::vector<double>& lengths, Density 
   const double lclamp = 1e-12 * lmax;
   double lmin = lmax;
   for (double l : lengths) lmin = std::min(lmin, std::max(l, lclamp));
-  for (size_t i = 0; i < q.size(); ++i) q[i] = std::max(lmin / std::max(lengths[i], lclamp), q_floor);
+  for (size_t i = 0; i < q.size(); ++i)
+    q[i] = std::max(lmin / std::max(lengths[i], lclamp), q_floor);
   return q;
 }
 

@@ -10,7 +10,8 @@
 namespace skinslide {
 
 /// 3D length of each bar. `points`: positions indexed by the bars' node ids.
-std::vector<double> bar_lengths(const Positions3& points, const std::vector<std::array<Index, 2>>& bars);
+std::vector<double> bar_lengths(const Positions3& points,
+                                const std::vector<std::array<Index, 2>>& bars);
 
 /// Force density of each bar from its length, normalised per patch (Lmin, Lmax of `lengths`):
 ///  - Paper:   q = max(1 - L/Lmax, q_floor); without the floor the longest bar has q = 0.

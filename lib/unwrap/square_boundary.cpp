@@ -75,7 +75,8 @@ SquareBoundary square_positions(const Positions3& p, const std::array<Index, 4>&
   }
   for (int j = 1; j < 4; ++j)
     if (offset[j] <= offset[j - 1])
-      throw Error(ErrorKind::Input, "the corners are not four distinct vertices in the loop's walking order");
+      throw Error(ErrorKind::Input,
+                  "the corners are not four distinct vertices in the loop's walking order");
   std::vector<double> edge(n);
   for (Index k = 0; k < n; ++k) edge[k] = (p[(k + 1) % n] - p[k]).norm();
 

@@ -11,8 +11,8 @@ namespace skinslide::test {
 
 struct Sample {
   PolyMesh bind;
-  std::vector<Index> faces;         ///< data/<name>/patch.txt
-  std::vector<Positions3> frames;   ///< data/<name>/frames/*.obj in name order
+  std::vector<Index> faces;        ///< data/<name>/patch.txt
+  std::vector<Positions3> frames;  ///< data/<name>/frames/*.obj in name order
 };
 
 /// Loads data/<name> ("elbow" or "face").

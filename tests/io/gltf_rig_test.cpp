@@ -83,7 +83,9 @@ struct Reference {
   std::vector<double> sampled(const tinygltf::AnimationSampler& s, int width, double t) const {
     const std::vector<float> in = floats(s.input), out = floats(s.output);
     const size_t n = in.size();
-    auto key = [&](size_t k) { return std::vector<double>(out.begin() + k * width, out.begin() + (k + 1) * width); };
+    auto key = [&](size_t k) {
+      return std::vector<double>(out.begin() + k * width, out.begin() + (k + 1) * width);
+    };
     if (t <= in[0]) return key(0);
     if (t >= in[n - 1]) return key(n - 1);
     size_t k = 0;
@@ -171,7 +173,8 @@ struct Reference {
         const M4& m = joint[jts[4 * v + k]];
         sum += w;
         for (int r = 0; r < 3; ++r)
-          p[r] += w * (m[r] * pos[3 * v] + m[4 + r] * pos[3 * v + 1] + m[8 + r] * pos[3 * v + 2] + m[12 + r]);
+          p[r] += w * (m[r] * pos[3 * v] + m[4 + r] * pos[3 * v + 1] + m[8 + r] * pos[3 * v + 2] +
+                       m[12 + r]);
       }
       for (int r = 0; r < 3; ++r) out[v][r] = p[r] / sum;
     }
@@ -257,7 +260,8 @@ TEST(GltfRig, ReadsTheDocumentedSkeletonsAndClips) {
     FAIL() << "expected a usage error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Usage);
-    EXPECT_NE(std::string(e.what()).find("1 \"Walk\": 0.000 s to 0.708 s"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1 \"Walk\": 0.000 s to 0.708 s"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(find_animation(rig, "Jump", fox.path), Error);
 }
@@ -279,7 +283,8 @@ TEST(RigFrames, FramesAreStaticPosedCopiesThatValidate) {
     const Pose world = pose_at(clip.rig, &clip.rig.animations[0], clip.times[k]);
     const Mat4& m = rest_world[clip.rig.mesh_node];
     for (size_t r = 0; r < world.positions.size(); ++r) {
-      const Vec3 shown = m.topLeftCorner<3, 3>() * frame.gltf->raw_positions[r] + m.topRightCorner<3, 1>();
+      const Vec3 shown =
+          m.topLeftCorner<3, 3>() * frame.gltf->raw_positions[r] + m.topRightCorner<3, 1>();
       ASSERT_LT((shown - world.positions[r]).norm(), 1e-9);
     }
     const std::string out = (dir / (clip.names[k] + ".glb")).string();

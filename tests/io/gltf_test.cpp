@@ -186,12 +186,13 @@ TEST(GltfRead, HandmadeFileDecodesEveryAccessorKind) {
   const MeshFile f = read_gltf_file(path, {});
   EXPECT_EQ(f.format, MeshFormat::Gltf);
   // Welded: c v1 v2 v3 (primitive 0), v4 (primitive 1), then primitive 2's three vertices.
-  const Positions3 expected = {{1, 1, 0}, {0, 0, 0}, {2, 0, 0}, {2, 2, 0},
+  const Positions3 expected = {{1, 1, 0}, {0, 0, 0},  {2, 0, 0},  {2, 2, 0},
                                {0, 2, 0}, {10, 0, 0}, {11, 0, 0}, {10, 1, 5}};
   EXPECT_EQ(f.mesh.positions, expected);
   const std::vector<Index> welded = {0, 1, 2, 3, 0, 3, 4, 1, 5, 6, 7};
   EXPECT_EQ(f.gltf->welded, welded);
-  const std::vector<std::vector<Index>> faces = {{0, 1, 2}, {0, 2, 3}, {3, 4, 0}, {4, 1, 0}, {5, 6, 7}};
+  const std::vector<std::vector<Index>> faces = {
+      {0, 1, 2}, {0, 2, 3}, {3, 4, 0}, {4, 1, 0}, {5, 6, 7}};
   ASSERT_EQ(f.mesh.face_count(), 5);
   for (Index t = 0; t < 5; ++t)
     EXPECT_EQ(std::vector<Index>(f.mesh.face_begin(t), f.mesh.face_begin(t) + 3), faces[t]) << t;
@@ -204,8 +205,9 @@ TEST(GltfRead, MeshChoiceByNameOrIndexAndAListWhenAmbiguous) {
   const fs::path dir = temp_dir();
   std::string json = handmade_gltf();
   // A second mesh "extra" (primitive 2 only) instanced by a second node.
-  json.replace(json.find(R"("meshes": [)"), 11,
-               R"("meshes": [{"name": "extra", "primitives": [{"attributes": {"POSITION": 5}}]}, )");
+  json.replace(
+      json.find(R"("meshes": [)"), 11,
+      R"("meshes": [{"name": "extra", "primitives": [{"attributes": {"POSITION": 5}}]}, )");
   json.replace(json.find(R"({"mesh": 0, "name": "square"})"), 29,
                R"({"mesh": 1, "name": "square"}, {"mesh": 0})");
   json.replace(json.find(R"("nodes": [0])"), 12, R"("nodes": [0, 1])");
@@ -249,21 +251,27 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
 TEST(GltfRead, RejectsWhatItCannotHonour) {
   const std::string good = handmade_gltf();
   expect_input_error(
-      replaced(good, R"("indices": 2, "mode": 4})",
-               R"("indices": 2, "mode": 4, "extensions": {"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}})"),
+      replaced(
+          good, R"("indices": 2, "mode": 4})",
+          R"("indices": 2, "mode": 4, "extensions": {"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}})"),
       "mesh 0 primitive 0: is compressed with KHR_draco_mesh_compression");
   expect_input_error(replaced(good, R"({"POSITION": 0, "NORMAL": 1})", R"({"NORMAL": 1})"),
                      "mesh 0 primitive 0: has no POSITION attribute");
-  expect_input_error(replaced(good, R"("count": 6, "type": "SCALAR")", R"("count": 5, "type": "SCALAR")"),
-                     "5 triangle-list indices: not a multiple of 3");
+  expect_input_error(
+      replaced(good, R"("count": 6, "type": "SCALAR")", R"("count": 5, "type": "SCALAR")"),
+      "5 triangle-list indices: not a multiple of 3");
   // An index past the vertices: 3 elements in the view read as 4 bytes wide.
-  expect_input_error(replaced(good, R"("componentType": 5123, "count": 6)", R"("componentType": 5125, "count": 3)"),
+  expect_input_error(replaced(good, R"("componentType": 5123, "count": 6)",
+                              R"("componentType": 5125, "count": 3)"),
                      "indices accessor 2: index 0 is 65536, past the 4 vertices");
-  expect_input_error(replaced(good, R"("byteLength": 36, "target")", R"("byteLength": 30, "target")"),
-                     "POSITION accessor 5: 3 elements from byte 0 run past the end of buffer view 4");
-  expect_input_error(replaced(good, R"("values": {"bufferView": 6})", R"("values": {"bufferView": 9})"),
-                     "sparse values buffer view 9 does not exist");
-  std::string lines_only = replaced(good, R"("indices": 2, "mode": 4})", R"("indices": 2, "mode": 1})");
+  expect_input_error(
+      replaced(good, R"("byteLength": 36, "target")", R"("byteLength": 30, "target")"),
+      "POSITION accessor 5: 3 elements from byte 0 run past the end of buffer view 4");
+  expect_input_error(
+      replaced(good, R"("values": {"bufferView": 6})", R"("values": {"bufferView": 9})"),
+      "sparse values buffer view 9 does not exist");
+  std::string lines_only =
+      replaced(good, R"("indices": 2, "mode": 4})", R"("indices": 2, "mode": 1})");
   lines_only = replaced(lines_only, R"("mode": 6})", R"("mode": 3})");
   lines_only = replaced(lines_only, R"({"attributes": {"POSITION": 5}},)",
                         R"({"attributes": {"POSITION": 5}, "mode": 2},)");
@@ -359,11 +367,13 @@ TEST(GltfWrite, SlidVertexMovesEveryRawCopyAndGetsInterpolatedNormals) {
     EXPECT_EQ(g.gltf->raw_positions[0], expected[0]);
     EXPECT_EQ(g.gltf->raw_positions[4], expected[0]);
     // Hand-computed normal: normalise(0.5 n(c) + 0.25 n(v1) + 0.25 n(v2)), stored as float.
-    const Vec3 n = normalised(0.5 * Vec3(0, 0, 1) + 0.25 * Vec3(0, -0.6f, 0.8f) +
-                              0.25 * Vec3(0.6f, 0, 0.8f));
+    const Vec3 n =
+        normalised(0.5 * Vec3(0, 0, 1) + 0.25 * Vec3(0, -0.6f, 0.8f) + 0.25 * Vec3(0.6f, 0, 0.8f));
     const auto& model = g.gltf->model;
-    const std::vector<double> n0 = gltf_accessor_values(model, g.gltf->primitives[0].normal_accessor, "t");
-    const std::vector<double> n1 = gltf_accessor_values(model, g.gltf->primitives[1].normal_accessor, "t");
+    const std::vector<double> n0 =
+        gltf_accessor_values(model, g.gltf->primitives[0].normal_accessor, "t");
+    const std::vector<double> n1 =
+        gltf_accessor_values(model, g.gltf->primitives[1].normal_accessor, "t");
     for (int c = 0; c < 3; ++c) {
       EXPECT_EQ(n0[c], static_cast<float>(n[c]));
       EXPECT_EQ(n1[c], static_cast<float>(n[c]));
@@ -385,7 +395,8 @@ TEST(GltfWrite, SlidVertexMovesEveryRawCopyAndGetsInterpolatedNormals) {
     // accessors, views and buffer bytes differ.
     const auto r = compare_gltf(in, out, {0, 1});
     EXPECT_NE(r.status, 0);  // the quantized primitive now points at a new accessor
-    EXPECT_NE(r.output.find("meshes/0/primitives/1/attributes/POSITION"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("meshes/0/primitives/1/attributes/POSITION"), std::string::npos)
+        << r.output;
   }
 }
 
@@ -419,7 +430,8 @@ TEST(GltfWrite, OnlyTheMovedVerticesBytesChangeInACharacter) {
   std::set<size_t> allowed;
   for (size_t raw = 0; raw < f.gltf->welded.size(); ++raw) {
     if (f.gltf->welded[raw] != 40) continue;
-    for (int acc : {f.gltf->primitives[0].position_accessor, f.gltf->primitives[0].normal_accessor}) {
+    for (int acc :
+         {f.gltf->primitives[0].position_accessor, f.gltf->primitives[0].normal_accessor}) {
       const size_t at = gltf_element_offset(f.gltf->model, acc, raw);
       for (size_t k = 0; k < 12; ++k) allowed.insert(at + k);
     }
@@ -449,22 +461,22 @@ TEST(GltfWrite, UnwritableTargetIsAnOutputErrorAndLeavesNoFile) {
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
-
 // A 1x1 RGBA PNG.
 const std::vector<unsigned char> kPng = {
-    0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52,
-    0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1F, 0x15, 0xC4,
-    0x89, 0x00, 0x00, 0x00, 0x0A, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9C, 0x63, 0x00, 0x01, 0x00, 0x00,
-    0x05, 0x00, 0x01, 0x0D, 0x0A, 0x2D, 0xB4, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE,
-    0x42, 0x60, 0x82};
+    0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48,
+    0x44, 0x52, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00,
+    0x00, 0x1F, 0x15, 0xC4, 0x89, 0x00, 0x00, 0x00, 0x0A, 0x49, 0x44, 0x41, 0x54, 0x78,
+    0x9C, 0x63, 0x00, 0x01, 0x00, 0x00, 0x05, 0x00, 0x01, 0x0D, 0x0A, 0x2D, 0xB4, 0x00,
+    0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60, 0x82};
 
 TEST(GltfWrite, ExternalBuffersAndImagesStayReachableFromAnotherFolder) {
   const fs::path dir = temp_dir();
   auto [json, bytes] = handmade_parts();
   json.replace(json.find("@BUFFER@"), 8, "square.bin");
-  json.replace(json.find(R"("scene": 0,)"), 11,
-               R"("scene": 0, "images": [{"uri": "tex/skin.png"}, {"uri": "data:image/png;base64,)" +
-                   base64_for_test(kPng) + R"("}],)");
+  json.replace(
+      json.find(R"("scene": 0,)"), 11,
+      R"("scene": 0, "images": [{"uri": "tex/skin.png"}, {"uri": "data:image/png;base64,)" +
+          base64_for_test(kPng) + R"("}],)");
   fs::create_directories(dir / "in" / "tex");
   fs::create_directories(dir / "out");
   write_file_atomic((dir / "in" / "square.bin").string(),
@@ -475,7 +487,8 @@ TEST(GltfWrite, ExternalBuffersAndImagesStayReachableFromAnotherFolder) {
   SKINSLIDE_EXPECT_VALID_GLTF(std::vector<std::string>{in});
   const std::string out = (dir / "out" / "frame.gltf").string();
   write_gltf_file(read_gltf_file(in, {}), SlidVertices{}, out);
-  EXPECT_EQ(read_file((dir / "out" / "frame.bin").string()), read_file((dir / "in" / "square.bin").string()));
+  EXPECT_EQ(read_file((dir / "out" / "frame.bin").string()),
+            read_file((dir / "in" / "square.bin").string()));
   const MeshFile g = read_gltf_file(out, {});
   ASSERT_EQ(g.gltf->model.images.size(), 2u);
   EXPECT_EQ(g.gltf->model.images[0].uri, "../in/tex/skin.png");

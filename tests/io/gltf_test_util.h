@@ -66,8 +66,8 @@ inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
 /// accessors), and, when nothing is edited, the same buffer bytes. Returns its report.
 inline CommandResult compare_gltf(const std::string& a, const std::string& b,
                                   const std::vector<int>& edited = {}) {
-  std::string cmd = "python3 " SKINSLIDE_SOURCE_DIR "/tests/io/gltf_compare.py " + quoted(a) +
-                    " " + quoted(b);
+  std::string cmd =
+      "python3 " SKINSLIDE_SOURCE_DIR "/tests/io/gltf_compare.py " + quoted(a) + " " + quoted(b);
   if (!edited.empty()) {
     cmd += " --edited ";
     for (size_t i = 0; i < edited.size(); ++i) cmd += (i ? "," : "") + std::to_string(edited[i]);

@@ -41,13 +41,15 @@ TEST(ObjRead, RejectsBadInputWithFileAndLine) {
   EXPECT_EQ(error_of("v 0 0\n"), "t.obj:1: vertex has 2 coordinates; 3 needed");
   EXPECT_EQ(error_of("v 0 x 0\n"), "t.obj:1: vertex coordinate 'x' is not a number");
   EXPECT_EQ(error_of("v 0 nan 0\n"), "t.obj:1: vertex coordinate 'nan' is not finite");
-  EXPECT_EQ(error_of("v 0 0 0\nv 1 0 0\nf 1 2\n"), "t.obj:3: face has 2 vertices; at least 3 needed");
+  EXPECT_EQ(error_of("v 0 0 0\nv 1 0 0\nf 1 2\n"),
+            "t.obj:3: face has 2 vertices; at least 3 needed");
   EXPECT_EQ(error_of("v 0 0 0\nf 0 1 1\n"), "t.obj:2: face index 0 (OBJ indices start at 1)");
   EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 4\n"),
             "t.obj:4: face index 4 is out of range (the file has 3 vertices)");
   EXPECT_EQ(error_of("v 0 0 0\nf -1 -2 -3\n"),
             "t.obj:2: relative face index -2 reaches before vertex 1 (1 vertices defined so far)");
-  EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nf 1 2 1\n"), "t.obj:3: face uses vertex 1 twice (degenerate face)");
+  EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nf 1 2 1\n"),
+            "t.obj:3: face uses vertex 1 twice (degenerate face)");
   EXPECT_EQ(error_of(""), "t.obj: the file is empty (0 bytes): not an OBJ mesh");
   EXPECT_EQ(error_of("# nothing\nvt 0 0\n"), "t.obj: no vertices (`v` lines): not an OBJ mesh");
   // A bad last line without an end of line: the file was most likely cut short.
@@ -64,7 +66,8 @@ TEST(ObjRead, RejectsBadInputWithFileAndLine) {
 }
 
 TEST(ObjRead, EveryPrefixOfAValidFileParsesOrFailsCleanly) {
-  const std::string text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\nf 1 3 4\n";
+  const std::string text =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\nf 1 3 4\n";
   for (size_t n = 0; n <= text.size(); ++n) {
     try {
       const ObjMesh obj = parse_obj("t.obj", text.substr(0, n));

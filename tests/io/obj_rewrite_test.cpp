@@ -5,7 +5,8 @@
 namespace skinslide {
 
 TEST(ObjRewrite, OnlyTheCoordinatesOfMovedVerticesChange) {
-  const std::string text = "# c\r\nv  0 0 0\r\nv\t1 0.5 0 1.0 # keep\r\nvt 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n";
+  const std::string text =
+      "# c\r\nv  0 0 0\r\nv\t1 0.5 0 1.0 # keep\r\nvt 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n";
   const ObjMesh obj = parse_obj("t.obj", text);
   Positions3 moved = obj.mesh.positions;
   EXPECT_EQ(rewrite_obj(obj.text, obj.mesh.positions, moved), text);  // nothing moved

@@ -34,7 +34,8 @@ TEST(Weights, OneALineInVertexOrder) {
 }
 
 TEST(Weights, PairsLeaveUnlistedVerticesAtZero) {
-  EXPECT_EQ(parse_weights("w.txt", "3 0.5\n# comment\n1, 1\n", 5), (std::vector<double>{0, 1, 0, 0.5, 0}));
+  EXPECT_EQ(parse_weights("w.txt", "3 0.5\n# comment\n1, 1\n", 5),
+            (std::vector<double>{0, 1, 0, 0.5, 0}));
 }
 
 TEST(Weights, RejectsBadLinesWithTheirLine) {
@@ -49,11 +50,14 @@ TEST(Weights, RejectsBadLinesWithTheirLine) {
   EXPECT_EQ(weights_error("1 0.5\n4 0.5\n"),
             "w.txt:2: vertex 4 is out of range (the bind has 4 vertices, numbered 0 to 3)");
   EXPECT_EQ(weights_error("1 0.5\n-1 0.5\n"), "w.txt:2: '-1' is not a vertex id");
-  EXPECT_EQ(weights_error("1 0.5\n2 0.5\n1 1\n"), "w.txt:3: vertex 1 is already given a weight on line 1");
-  EXPECT_EQ(weights_error("1 0.5\n0.5\n"), "w.txt:2: has 1 numbers; line 1 starts an 'index weight' file");
+  EXPECT_EQ(weights_error("1 0.5\n2 0.5\n1 1\n"),
+            "w.txt:3: vertex 1 is already given a weight on line 1");
+  EXPECT_EQ(weights_error("1 0.5\n0.5\n"),
+            "w.txt:2: has 1 numbers; line 1 starts an 'index weight' file");
   EXPECT_EQ(weights_error("# x\n0.5\n1 0.5\n"),
             "w.txt:3: has 2 numbers; line 2 starts a one-weight-a-line file (vertex order)");
-  EXPECT_EQ(weights_error("1 2 3\n"), "w.txt:1: expected one weight a line or 'index weight' pairs; found 3 numbers");
+  EXPECT_EQ(weights_error("1 2 3\n"),
+            "w.txt:1: expected one weight a line or 'index weight' pairs; found 3 numbers");
   EXPECT_EQ(weights_error("# nothing\n"), "w.txt: holds no weights");
 }
 
@@ -70,7 +74,8 @@ TEST(Weights, EveryPrefixOfAFileParsesOrIsRejected) {
 }
 
 TEST(VertexList, ReadsIdsRangesAndMayaComponents) {
-  EXPECT_EQ(parse_vertex_list("pins.txt", "# pins\n7 3, 3\n10-12 # range\npBody.vtx[20:21] vtx[30]\n", 100),
+  EXPECT_EQ(parse_vertex_list("pins.txt",
+                              "# pins\n7 3, 3\n10-12 # range\npBody.vtx[20:21] vtx[30]\n", 100),
             (std::vector<Index>{3, 7, 10, 11, 12, 20, 21, 30}));
   EXPECT_TRUE(parse_vertex_list("pins.txt", "# none\n", 100).empty());
 }
@@ -87,9 +92,10 @@ TEST(VertexList, RejectsBadTokensWithTheirLine) {
 }
 
 TEST(ObjColorWeights, ReadsOneChannel) {
-  const ObjMesh obj = parse_obj("c.obj",
-                                "# coloured\nv 0 0 0 0.1 0.2 0.3\nv 1 0 0 1 0 0.5 # red\r\nv 0 1 0 0 0 0\n"
-                                "f 1 2 3\n");
+  const ObjMesh obj =
+      parse_obj("c.obj",
+                "# coloured\nv 0 0 0 0.1 0.2 0.3\nv 1 0 0 1 0 0.5 # red\r\nv 0 1 0 0 0 0\n"
+                "f 1 2 3\n");
   EXPECT_EQ(obj_color_weights("c.obj", obj.text, 0), (std::vector<double>{0.1, 1, 0}));
   EXPECT_EQ(obj_color_weights("c.obj", obj.text, 2), (std::vector<double>{0.3, 0.5, 0}));
 }

@@ -98,7 +98,8 @@ TEST(Patches, RejectsInconsistentOrientation) {
 
 TEST(Patches, RejectsAClosedComponent) {
   PolyMesh cube;
-  cube.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  cube.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                    {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   cube.add_face({0, 3, 2, 1});
   cube.add_face({4, 5, 6, 7});
   cube.add_face({0, 1, 5, 4});

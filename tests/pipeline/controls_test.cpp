@@ -34,7 +34,8 @@ double distance_to_patch(const PatchNet& patch, const Positions3& frame, const V
   return best;
 }
 
-std::string usage_error(const PolyMesh& bind, const std::vector<Index>& faces, const SlideControls& c) {
+std::string usage_error(const PolyMesh& bind, const std::vector<Index>& faces,
+                        const SlideControls& c) {
   try {
     bind_setup(bind, {faces}, SlideOptions{}, c);
   } catch (const Error& e) {
@@ -109,10 +110,12 @@ TEST(SlideWeights, BadWeightsAreUsageErrors) {
   const PolyMesh bind = test::quad_grid(3, 3);
   SlideControls c;
   c.weight.assign(5, 1.0);
-  EXPECT_EQ(usage_error(bind, test::all_faces(bind), c), "there are 5 slide weights; the bind has 16 vertices");
+  EXPECT_EQ(usage_error(bind, test::all_faces(bind), c),
+            "there are 5 slide weights; the bind has 16 vertices");
   c.weight.assign(16, 1.0);
   c.weight[7] = 1.5;
-  EXPECT_EQ(usage_error(bind, test::all_faces(bind), c), "vertex 7: slide weight 1.500000 is outside [0, 1]");
+  EXPECT_EQ(usage_error(bind, test::all_faces(bind), c),
+            "vertex 7: slide weight 1.500000 is outside [0, 1]");
   c.weight.clear();
   c.strength = -1;
   EXPECT_EQ(usage_error(bind, test::all_faces(bind), c), "--strength must be a finite number >= 0");
@@ -165,8 +168,10 @@ TEST(Pins, APinOnAHalfStretchedSheetHoldsTheSheet) {
   const Index centre = 4 * 9 + 4;
   SlideControls controls;
   controls.pins = {centre};
-  const Positions3 free_out = slid(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}), frame);
-  const Positions3 out = slid(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}, controls), frame);
+  const Positions3 free_out =
+      slid(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}), frame);
+  const Positions3 out =
+      slid(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}, controls), frame);
   EXPECT_GT(free_out[centre].x(), frame[centre].x());
   EXPECT_EQ(out[centre], frame[centre]);
   EXPECT_GT(out[centre + 9].x(), frame[centre + 9].x()) << "the vertex above still slides right";
@@ -234,10 +239,12 @@ TEST(ChosenCorners, ErrorsNameTheBadVertex) {
             "--corners 1,9,12,15: vertex 12 is not on the boundary loop through vertex 1; the four "
             "corners go on one loop");
   c.corners = {{6, 9, 23, 15}};
-  EXPECT_EQ(usage_error(bind, faces, c), "--corners 6,9,23,15: vertex 6 is not on a boundary loop of any patch");
+  EXPECT_EQ(usage_error(bind, faces, c),
+            "--corners 6,9,23,15: vertex 6 is not on a boundary loop of any patch");
   c.corners = {{1, 9, 99, 15}};
   EXPECT_EQ(usage_error(bind, faces, c),
-            "--corners 1,9,99,15: vertex 99 is out of range (the bind has 25 vertices, numbered 0 to 24)");
+            "--corners 1,9,99,15: vertex 99 is out of range (the bind has 25 vertices, numbered 0 "
+            "to 24)");
   c.corners = {{1, 9, 9, 15}};
   EXPECT_EQ(usage_error(bind, faces, c), "--corners 1,9,9,15: vertex 9 is named twice");
   c.corners = {{1, 9, 23, 15}, {0, 4, 24, 20}};
@@ -301,7 +308,8 @@ TEST(Density, FoldFreeFrameNetsWhereReadmeSaysSo) {
       SlideOptions o;
       o.density = d;
       const BindSetup setup = bind_setup(c.bind, {c.faces}, o);
-      for (const PatchNet& p : setup.patches) EXPECT_EQ(flipped_triangles(p.bind_net, p.triangles), 0);
+      for (const PatchNet& p : setup.patches)
+        EXPECT_EQ(flipped_triangles(p.bind_net, p.triangles), 0);
       int folds_in_bent_frames = 0;
       for (size_t f = 0; f < c.frames.size(); ++f) {
         const FrameResult r = slide_frame(setup, c.frames[f]);
@@ -331,7 +339,8 @@ TEST(Spread, PatchReportMatchesADirectComputation) {
     std::vector<double> r;
     for (const auto& [a, b] : patch.bars) {
       const Index u = patch.vertices[a], v = patch.vertices[b];
-      r.push_back(std::log((x[u] - x[v]).norm() / (c.bind.positions[u] - c.bind.positions[v]).norm()));
+      r.push_back(
+          std::log((x[u] - x[v]).norm() / (c.bind.positions[u] - c.bind.positions[v]).norm()));
     }
     double mean = 0, var = 0;
     for (double v : r) mean += v;

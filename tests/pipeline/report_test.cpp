@@ -29,11 +29,12 @@ TEST(Report, KeysInAFixedOrderAndTimingsApart) {
   RunReport run = two_frames(setup, frame);
   const std::string a = report_json(setup, run);
   size_t at = 0;
-  for (const char* key : {"\"skinslide\"", "\"bind\": \"bind \\\"a\\\".obj\"", "\"patch_files\"", "\"options\"",
-                          "\"density\": \"inverse\"", "\"controls\"", "\"patches\"", "\"corners\": [0, 4, 24, 20]",
-                          "\"frames\"", "\"path\": \"f0.obj\"", "\"cg_iterations\"", "\"spread_slid\"",
-                          "\"path\": \"f1.obj\"", "\"totals\"", "\"frames\": 2", "\"moved\": 18", "\"timings\"",
-                          "\"wall\""}) {
+  for (const char* key :
+       {"\"skinslide\"", "\"bind\": \"bind \\\"a\\\".obj\"", "\"patch_files\"", "\"options\"",
+        "\"density\": \"inverse\"", "\"controls\"", "\"patches\"", "\"corners\": [0, 4, 24, 20]",
+        "\"frames\"", "\"path\": \"f0.obj\"", "\"cg_iterations\"", "\"spread_slid\"",
+        "\"path\": \"f1.obj\"", "\"totals\"", "\"frames\": 2", "\"moved\": 18", "\"timings\"",
+        "\"wall\""}) {
     const size_t found = a.find(key, at);
     ASSERT_NE(found, std::string::npos) << key << "\n" << a;
     at = found;
@@ -44,7 +45,8 @@ TEST(Report, KeysInAFixedOrderAndTimingsApart) {
   RunReport again = two_frames(setup, frame);
   again.timings = false;
   again.bind_seconds = 123;  // timings are not written
-  EXPECT_EQ(b, report_json(setup, again)) << "without timings the report depends on the inputs only";
+  EXPECT_EQ(b, report_json(setup, again))
+      << "without timings the report depends on the inputs only";
   EXPECT_EQ(b.back(), '\n');
 }
 

@@ -127,8 +127,10 @@ TEST_P(RigSlide, EveryFrameKeepsTheBorderStaysOnTheSurfaceAndEvensTheStretch) {
   }
   EXPECT_GT(frame_sum, 0);
   EXPECT_LT(worst_ratio, 1.0) << "sliding widened the stretch in some frame";
-  std::printf("[ slide   ] %s: %zu frames, %zu faces, %zu free vertices, spread ratio mean %.3f worst %.3f\n",
-              c.file, clip.times.size(), faces.size(), free_count, slid_sum / frame_sum, worst_ratio);
+  std::printf(
+      "[ slide   ] %s: %zu frames, %zu faces, %zu free vertices, spread ratio mean %.3f worst "
+      "%.3f\n",
+      c.file, clip.times.size(), faces.size(), free_count, slid_sum / frame_sum, worst_ratio);
 
   // One frame written twice: the same bytes, and a valid glTF.
   const fs::path dir = testing::temp_dir();

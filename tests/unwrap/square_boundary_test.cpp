@@ -11,7 +11,8 @@ namespace {
 
 Positions3 circle(int n) {
   Positions3 p;
-  for (int k = 0; k < n; ++k) p.emplace_back(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), 0);
+  for (int k = 0; k < n; ++k)
+    p.emplace_back(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), 0);
   return p;
 }
 
@@ -33,15 +34,14 @@ TEST(SquareBoundary, NearTiesGoToTheEarlierVertex) {
 
 TEST(SquareBoundary, SidesAreSpacedByArcLength) {
   // A rectangle 3 x 1 sampled at 1: corners at the start, 1/4, 1/2, 3/4 of the length 8.
-  const Positions3 p{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {3, 1, 0}, {2, 1, 0}, {1, 1, 0}, {0, 1, 0}};
+  const Positions3 p{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0},
+                     {3, 1, 0}, {2, 1, 0}, {1, 1, 0}, {0, 1, 0}};
   const SquareBoundary sq = square_positions(p);
   EXPECT_EQ(sq.corners, (std::array<Index, 4>{0, 2, 4, 6}));
   EXPECT_NEAR(sq.positions[3].y(), 0.5, 1e-15);  // vertex 3 halfway up side 1 (2 -> 4)
 }
 
-TEST(SquareBoundary, RejectsShortLoops) {
-  EXPECT_THROW(square_positions(circle(3)), Error);
-}
+TEST(SquareBoundary, RejectsShortLoops) { EXPECT_THROW(square_positions(circle(3)), Error); }
 
 TEST(SquareBoundary, OuterLoopIsTheLongestAndTiesGoToTheSmallestStart) {
   EXPECT_EQ(outer_loop({1.0, 3.0, 2.0}, {0, 5, 9}), 1);
