@@ -201,33 +201,13 @@ int attribute(const tinygltf::Primitive& prim, const char* name) {
   return it == prim.attributes.end() ? -1 : it->second;
 }
 
-std::string type_name(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-      return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-      return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-      return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-      return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-      return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-      return "MAT4";
-    default:
-      return "type " + std::to_string(type);
-  }
-}
-
 void check_attribute(const tinygltf::Model& model, int accessor, int type, Index count,
                      const std::string& where) {
   if (accessor < 0) return;
   if (accessor >= static_cast<int>(model.accessors.size())) fail(where, "does not exist");
   const tinygltf::Accessor& acc = model.accessors[accessor];
-  if (acc.type != type) fail(where, "is " + type_name(acc.type) + ", expected " + type_name(type));
+  if (acc.type != type)
+    fail(where, "is " + gltf_type_name(acc.type) + ", expected " + gltf_type_name(type));
   if (count >= 0 && static_cast<Index>(acc.count) != count)
     fail(where,
          "has " + std::to_string(acc.count) + " elements, POSITION has " + std::to_string(count));

@@ -13,6 +13,9 @@ namespace skinslide {
 /// Components of one element of a TINYGLTF_TYPE_* (SCALAR 1 ... MAT4 16); 0 when unknown.
 int gltf_component_count(int type);
 
+/// "SCALAR", "VEC2", ... "MAT4" for a TINYGLTF_TYPE_*; "type N" when unknown.
+std::string gltf_type_name(int type);
+
 /// Every element of accessor `index` as doubles, row-major #count x components (matrices in
 /// glTF's column-major order). Integer components are converted as glTF says: `normalized`
 /// ones to [-1, 1] or [0, 1] (signed: max(c / (2^(n-1) - 1), -1)), others to their value.

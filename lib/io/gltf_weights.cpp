@@ -14,27 +14,6 @@ namespace {
   throw Error(ErrorKind::Input, where + ": " + what);
 }
 
-std::string type_name(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-      return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-      return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-      return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-      return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-      return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-      return "MAT4";
-    default:
-      return "type " + std::to_string(type);
-  }
-}
-
 std::string component_name(int component_type, bool normalized) {
   std::string s;
   switch (component_type) {
@@ -93,7 +72,7 @@ std::vector<double> gltf_attribute_weights(const MeshFile& file, const std::stri
     if (index < 0 || index >= static_cast<int>(model.accessors.size())) fail(aw, "does not exist");
     const tinygltf::Accessor& acc = model.accessors[index];
     if (acc.type != TINYGLTF_TYPE_SCALAR || !is_weight_component(acc))
-      fail(aw, "is " + type_name(acc.type) + " " +
+      fail(aw, "is " + gltf_type_name(acc.type) + " " +
                    component_name(acc.componentType, acc.normalized) +
                    "; slide weights need SCALAR float, normalized unsigned byte or normalized "
                    "unsigned short");

@@ -6,20 +6,10 @@
 #include "core/error.h"
 #include "io/atomic_write.h"
 #include "io/number_format.h"
+#include "io/token_lines.h"
 
 namespace skinslide {
 namespace {
-
-bool is_separator(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == ',';
-}
-
-std::string quoted(std::string_view t) {
-  constexpr size_t kMax = 40;
-  std::string s(t.substr(0, kMax));
-  if (t.size() > kMax) s += "...";
-  return "'" + s + "'";
-}
 
 // "12" -> id; nullopt if not a non-negative integer.
 std::optional<long long> face_id(std::string_view t) {
@@ -46,56 +36,41 @@ std::optional<std::pair<long long, long long>> id_or_range(std::string_view t, c
 PatchSelection parse_patch(const std::string& path, const std::string& text) {
   PatchSelection sel;
   sel.path = path;
-  long line = 0;
-  size_t pos = 0;
   long object_line = 0;
-  while (pos < text.size()) {
-    ++line;
-    size_t eol = text.find('\n', pos);
-    if (eol == std::string::npos) eol = text.size();
-    std::string_view body(text.data() + pos, eol - pos);
-    pos = eol + 1;
-    if (body.find('\0') != std::string_view::npos)
-      throw_input(path, line, "binary data (NUL byte): not a patch file");
-    body = body.substr(0, body.find('#'));
-    size_t i = 0;
-    while (i < body.size()) {
-      while (i < body.size() && is_separator(body[i])) ++i;
-      if (i >= body.size()) break;
-      const size_t s = i;
-      while (i < body.size() && !is_separator(body[i])) ++i;
-      const std::string_view tok = body.substr(s, i - s);
-      std::optional<std::pair<long long, long long>> range;
-      const size_t bracket = tok.find("f[");
-      if (bracket != std::string_view::npos && tok.back() == ']' &&
-          (bracket == 0 || tok[bracket - 1] == '.')) {
-        // Maya component string: [object.]f[a] or [object.]f[a:b]
-        const std::string object(tok.substr(0, bracket == 0 ? 0 : bracket - 1));
-        range = id_or_range(tok.substr(bracket + 2, tok.size() - bracket - 3), ':');
-        if (range && !object.empty()) {
-          if (sel.object.empty()) {
-            sel.object = object;
-            object_line = line;
-          } else if (sel.object != object) {
-            throw_input(path, line,
-                        "names object '" + object + "' but line " + std::to_string(object_line) +
-                            " names '" + sel.object +
-                            "': one patch file selects faces of one mesh");
+  for_each_token_line(
+      path, text, "a patch file", [&](long line, const std::vector<std::string_view>& tokens) {
+        for (const std::string_view tok : tokens) {
+          std::optional<std::pair<long long, long long>> range;
+          const size_t bracket = tok.find("f[");
+          if (bracket != std::string_view::npos && tok.back() == ']' &&
+              (bracket == 0 || tok[bracket - 1] == '.')) {
+            // Maya component string: [object.]f[a] or [object.]f[a:b]
+            const std::string object(tok.substr(0, bracket == 0 ? 0 : bracket - 1));
+            range = id_or_range(tok.substr(bracket + 2, tok.size() - bracket - 3), ':');
+            if (range && !object.empty()) {
+              if (sel.object.empty()) {
+                sel.object = object;
+                object_line = line;
+              } else if (sel.object != object) {
+                throw_input(path, line,
+                            "names object '" + object + "' but line " +
+                                std::to_string(object_line) + " names '" + sel.object +
+                                "': one patch file selects faces of one mesh");
+              }
+            }
+          } else {
+            range = id_or_range(tok, '-');
           }
+          if (!range)
+            throw_input(path, line,
+                        "unknown token " + quoted_token(tok) +
+                            ": expected a face id (12), a range (12-40) or a Maya component "
+                            "(pBody.f[12:40])");
+          if (range->first > range->second)
+            throw_input(path, line, "range " + quoted_token(tok) + " runs backwards");
+          sel.ranges.push_back({range->first, range->second, line});
         }
-      } else {
-        range = id_or_range(tok, '-');
-      }
-      if (!range)
-        throw_input(path, line,
-                    "unknown token " + quoted(tok) +
-                        ": expected a face id (12), a range (12-40) or a Maya component "
-                        "(pBody.f[12:40])");
-      if (range->first > range->second)
-        throw_input(path, line, "range " + quoted(tok) + " runs backwards");
-      sel.ranges.push_back({range->first, range->second, line});
-    }
-  }
+      });
   return sel;
 }
 

@@ -7,52 +7,14 @@
 #include "io/atomic_write.h"
 #include "io/number_format.h"
 #include "io/obj_read.h"
+#include "io/token_lines.h"
 
 namespace skinslide {
 namespace {
 
-bool is_separator(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == ',';
-}
-
-std::string quoted(std::string_view t) {
-  constexpr size_t kMax = 40;
-  std::string s(t.substr(0, kMax));
-  if (t.size() > kMax) s += "...";
-  return "'" + s + "'";
-}
-
-// Calls f(line number, tokens) for every line of `text` (comments stripped, may be empty).
-template <typename F>
-void for_each_line(const std::string& path, const std::string& text, F&& f) {
-  long line = 0;
-  size_t pos = 0;
-  std::vector<std::string_view> tokens;
-  while (pos < text.size()) {
-    ++line;
-    size_t eol = text.find('\n', pos);
-    if (eol == std::string::npos) eol = text.size();
-    std::string_view body(text.data() + pos, eol - pos);
-    pos = eol + 1;
-    if (body.find('\0') != std::string_view::npos)
-      throw_input(path, line, "binary data (NUL byte): not a text file");
-    body = body.substr(0, body.find('#'));
-    tokens.clear();
-    size_t i = 0;
-    while (i < body.size()) {
-      while (i < body.size() && is_separator(body[i])) ++i;
-      if (i >= body.size()) break;
-      const size_t s = i;
-      while (i < body.size() && !is_separator(body[i])) ++i;
-      tokens.push_back(body.substr(s, i - s));
-    }
-    f(line, tokens);
-  }
-}
-
 double weight_value(const std::string& path, long line, std::string_view t) {
   const auto w = parse_double(t);
-  if (!w) throw_input(path, line, quoted(t) + " is not a number");
+  if (!w) throw_input(path, line, quoted_token(t) + " is not a number");
   if (!(*w >= 0 && *w <= 1))
     throw_input(path, line, "weight " + std::string(t) + " is outside [0, 1]");
   return *w;
@@ -71,52 +33,54 @@ std::vector<double> parse_weights(const std::string& path, const std::string& te
   std::vector<double> w;
   std::vector<long> listed_at;  // pairs: line that set each vertex, 0 = not listed
   long first_line = 0;
-  for_each_line(path, text, [&](long line, const std::vector<std::string_view>& tok) {
-    if (tok.empty()) return;
-    if (layout == Layout::Unknown) {
-      first_line = line;
-      if (tok.size() == 1) {
-        layout = Layout::Dense;
-      } else if (tok.size() == 2) {
-        layout = Layout::Pairs;
-        w.assign(vertex_count, 0.0);
-        listed_at.assign(vertex_count, 0);
-      }
-    }
-    if (layout == Layout::Dense) {
-      if (tok.size() != 1)
-        throw_input(path, line,
-                    "has " + std::to_string(tok.size()) + " numbers; line " +
-                        std::to_string(first_line) +
-                        " starts a one-weight-a-line file (vertex order)");
-      if (static_cast<Index>(w.size()) == vertex_count)
-        throw_input(path, line,
-                    "more weights than the bind's " + std::to_string(vertex_count) + " vertices");
-      w.push_back(weight_value(path, line, tok[0]));
-    } else if (layout == Layout::Pairs) {
-      if (tok.size() != 2)
-        throw_input(path, line,
-                    "has " + std::to_string(tok.size()) + " numbers; line " +
-                        std::to_string(first_line) + " starts an 'index weight' file");
-      const auto id = vertex_id(tok[0]);
-      if (!id) throw_input(path, line, quoted(tok[0]) + " is not a vertex id");
-      if (*id >= vertex_count)
-        throw_input(path, line,
-                    "vertex " + std::string(tok[0]) + " is out of range (the bind has " +
-                        std::to_string(vertex_count) + " vertices, numbered 0 to " +
-                        std::to_string(vertex_count - 1) + ")");
-      if (listed_at[*id])
-        throw_input(path, line,
-                    "vertex " + std::string(tok[0]) + " is already given a weight on line " +
-                        std::to_string(listed_at[*id]));
-      w[*id] = weight_value(path, line, tok[1]);
-      listed_at[*id] = line;
-    } else {
-      throw_input(path, line,
-                  "expected one weight a line or 'index weight' pairs; found " +
-                      std::to_string(tok.size()) + " numbers");
-    }
-  });
+  for_each_token_line(
+      path, text, "a text file", [&](long line, const std::vector<std::string_view>& tok) {
+        if (tok.empty()) return;
+        if (layout == Layout::Unknown) {
+          first_line = line;
+          if (tok.size() == 1) {
+            layout = Layout::Dense;
+          } else if (tok.size() == 2) {
+            layout = Layout::Pairs;
+            w.assign(vertex_count, 0.0);
+            listed_at.assign(vertex_count, 0);
+          }
+        }
+        if (layout == Layout::Dense) {
+          if (tok.size() != 1)
+            throw_input(path, line,
+                        "has " + std::to_string(tok.size()) + " numbers; line " +
+                            std::to_string(first_line) +
+                            " starts a one-weight-a-line file (vertex order)");
+          if (static_cast<Index>(w.size()) == vertex_count)
+            throw_input(
+                path, line,
+                "more weights than the bind's " + std::to_string(vertex_count) + " vertices");
+          w.push_back(weight_value(path, line, tok[0]));
+        } else if (layout == Layout::Pairs) {
+          if (tok.size() != 2)
+            throw_input(path, line,
+                        "has " + std::to_string(tok.size()) + " numbers; line " +
+                            std::to_string(first_line) + " starts an 'index weight' file");
+          const auto id = vertex_id(tok[0]);
+          if (!id) throw_input(path, line, quoted_token(tok[0]) + " is not a vertex id");
+          if (*id >= vertex_count)
+            throw_input(path, line,
+                        "vertex " + std::string(tok[0]) + " is out of range (the bind has " +
+                            std::to_string(vertex_count) + " vertices, numbered 0 to " +
+                            std::to_string(vertex_count - 1) + ")");
+          if (listed_at[*id])
+            throw_input(path, line,
+                        "vertex " + std::string(tok[0]) + " is already given a weight on line " +
+                            std::to_string(listed_at[*id]));
+          w[*id] = weight_value(path, line, tok[1]);
+          listed_at[*id] = line;
+        } else {
+          throw_input(path, line,
+                      "expected one weight a line or 'index weight' pairs; found " +
+                          std::to_string(tok.size()) + " numbers");
+        }
+      });
   if (layout == Layout::Unknown) throw_input(path, 0, "holds no weights");
   if (layout == Layout::Dense && static_cast<Index>(w.size()) != vertex_count)
     throw_input(path, 0,
@@ -133,33 +97,34 @@ std::vector<double> read_weights(const std::string& path, Index vertex_count) {
 std::vector<Index> parse_vertex_list(const std::string& path, const std::string& text,
                                      Index vertex_count) {
   std::vector<char> in(vertex_count, 0);
-  for_each_line(path, text, [&](long line, const std::vector<std::string_view>& tokens) {
-    for (std::string_view tok : tokens) {
-      std::string_view body = tok;
-      char sep = '-';
-      const size_t bracket = tok.find("vtx[");
-      if (bracket != std::string_view::npos && tok.back() == ']' &&
-          (bracket == 0 || tok[bracket - 1] == '.')) {
-        body = tok.substr(bracket + 4, tok.size() - bracket - 5);
-        sep = ':';
-      }
-      const size_t s = body.find(sep, 1);
-      const auto a = vertex_id(body.substr(0, s));
-      const auto b = s == std::string_view::npos ? a : vertex_id(body.substr(s + 1));
-      if (!a || !b)
-        throw_input(path, line,
-                    "unknown token " + quoted(tok) +
-                        ": expected a vertex id (12), a range (12-40) or a Maya "
-                        "component (pBody.vtx[12:40])");
-      if (*a > *b) throw_input(path, line, "range " + quoted(tok) + " runs backwards");
-      if (*b >= vertex_count)
-        throw_input(path, line,
-                    "vertex " + std::to_string(*b) + " is out of range (the bind has " +
-                        std::to_string(vertex_count) + " vertices, numbered 0 to " +
-                        std::to_string(vertex_count - 1) + ")");
-      for (long long v = *a; v <= *b; ++v) in[v] = 1;
-    }
-  });
+  for_each_token_line(
+      path, text, "a text file", [&](long line, const std::vector<std::string_view>& tokens) {
+        for (std::string_view tok : tokens) {
+          std::string_view body = tok;
+          char sep = '-';
+          const size_t bracket = tok.find("vtx[");
+          if (bracket != std::string_view::npos && tok.back() == ']' &&
+              (bracket == 0 || tok[bracket - 1] == '.')) {
+            body = tok.substr(bracket + 4, tok.size() - bracket - 5);
+            sep = ':';
+          }
+          const size_t s = body.find(sep, 1);
+          const auto a = vertex_id(body.substr(0, s));
+          const auto b = s == std::string_view::npos ? a : vertex_id(body.substr(s + 1));
+          if (!a || !b)
+            throw_input(path, line,
+                        "unknown token " + quoted_token(tok) +
+                            ": expected a vertex id (12), a range (12-40) or a Maya "
+                            "component (pBody.vtx[12:40])");
+          if (*a > *b) throw_input(path, line, "range " + quoted_token(tok) + " runs backwards");
+          if (*b >= vertex_count)
+            throw_input(path, line,
+                        "vertex " + std::to_string(*b) + " is out of range (the bind has " +
+                            std::to_string(vertex_count) + " vertices, numbered 0 to " +
+                            std::to_string(vertex_count - 1) + ")");
+          for (long long v = *a; v <= *b; ++v) in[v] = 1;
+        }
+      });
   std::vector<Index> ids;
   for (Index v = 0; v < vertex_count; ++v)
     if (in[v]) ids.push_back(v);
@@ -198,7 +163,7 @@ std::vector<double> obj_color_weights(const std::string& path, const ObjText& ob
                       " has no colour: expected 'v x y z r g b' for slide weights from "
                       "vertex colours");
     const auto c = parse_double(tok[channel]);
-    if (!c) throw_input(path, line, "colour " + quoted(tok[channel]) + " is not a number");
+    if (!c) throw_input(path, line, "colour " + quoted_token(tok[channel]) + " is not a number");
     if (!(*c >= 0 && *c <= 1))
       throw_input(path, line,
                   "colour " + std::string(tok[channel]) +
