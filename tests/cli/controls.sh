@@ -6,7 +6,7 @@ set -u
 source "$(dirname "$0")/harness.sh"
 py=/usr/bin/python3
 
-expect_exit() {  # expect_exit CODE PATTERN ARGS...: exit code, and stderr holds "skinslide: error: ...PATTERN"
+fails_with() {  # fails_with CODE PATTERN ARGS...: exit code, and stderr holds "skinslide: error: ...PATTERN"
   local code=$1 pattern=$2
   shift 2
   "$bin" -q "$@" 2>"$tmp/stderr"
@@ -143,7 +143,7 @@ assert r['options']['density'] == 'paper' and 'timings' not in r"
 "$bin" -q --config "$tmp/job.toml" --density uniform data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/cfg"
 check "the command line overrides the config file" $py -c "
 import json; assert json.load(open('$tmp/cfg.json'))['options']['density'] == 'uniform'"
-check "a missing config file is a usage error (2)" expect_exit 2 "--config" --config "$tmp/none.toml" "${elbow[@]}" -o "$tmp/e0"
+check "a missing config file is a usage error (2)" fails_with 2 "--config" --config "$tmp/none.toml" "${elbow[@]}" -o "$tmp/e0"
 
 # --- progress -----------------------------------------------------------------------------------
 "$bin" "${elbow[@]}" -o "$tmp/log" 2>"$tmp/log.txt"
@@ -157,26 +157,26 @@ fi
 
 # --- errors -------------------------------------------------------------------------------------
 printf '0\n0.5\nhalf\n' >"$tmp/bad.txt"
-check "a bad weight is an input error naming file:line (3)" expect_exit 3 "$tmp/bad.txt:3: 'half' is not a number" \
+check "a bad weight is an input error naming file:line (3)" fails_with 3 "$tmp/bad.txt:3: 'half' is not a number" \
   --weights "$tmp/bad.txt" "${elbow[@]}" -o "$tmp/e1"
 check "a bad weights file writes nothing" bash -c "[ ! -e '$tmp/e1' ] || [ -z \"\$(ls -A '$tmp/e1')\" ]"
 printf '5\n2000\n' >"$tmp/badpins.txt"
-check "a pin past the last vertex is an input error (3)" expect_exit 3 "$tmp/badpins.txt:2: vertex 2000 is out of range" \
+check "a pin past the last vertex is an input error (3)" fails_with 3 "$tmp/badpins.txt:2: vertex 2000 is out of range" \
   --pin "$tmp/badpins.txt" "${elbow[@]}" -o "$tmp/e2"
-check "corners off the loop name the vertex (2)" expect_exit 2 "vertex 700 is not on the boundary loop through vertex 356" \
+check "corners off the loop name the vertex (2)" fails_with 2 "vertex 700 is not on the boundary loop through vertex 356" \
   --corners 356,364,372,700 "${elbow[@]}" -o "$tmp/e3"
-check "corners against the walk say the walking order (2)" expect_exit 2 "walking from 380 the loop meets them as 380,356,364,372" \
+check "corners against the walk say the walking order (2)" fails_with 2 "walking from 380 the loop meets them as 380,356,364,372" \
   --corners 380,372,364,356 "${elbow[@]}" -o "$tmp/e4"
-check "three corners are a usage error (2)" expect_exit 2 "expected four vertex ids" --corners 1,2,3 "${elbow[@]}" -o "$tmp/e5"
-check "an outer-loop vertex inside the patch is a usage error (2)" expect_exit 2 "vertex 400 is not on a boundary loop" \
+check "three corners are a usage error (2)" fails_with 2 "expected four vertex ids" --corners 1,2,3 "${elbow[@]}" -o "$tmp/e5"
+check "an outer-loop vertex inside the patch is a usage error (2)" fails_with 2 "vertex 400 is not on a boundary loop" \
   --outer-loop-vertex 400 "${elbow[@]}" -o "$tmp/e6"
-check "--weights and --weights-from-obj-color conflict (2)" expect_exit 2 "excludes" \
+check "--weights and --weights-from-obj-color conflict (2)" fails_with 2 "excludes" \
   --weights "$tmp/zero.txt" --weights-from-obj-color r "${elbow[@]}" -o "$tmp/e7"
-check "colour weights need colours (3)" expect_exit 3 "data/elbow/bind.obj:3: vertex 0 has no colour" \
+check "colour weights need colours (3)" fails_with 3 "data/elbow/bind.obj:3: vertex 0 has no colour" \
   --weights-from-obj-color r "${elbow[@]}" -o "$tmp/e8"
-check "--report-no-timings needs --report (2)" expect_exit 2 "requires --report" --report-no-timings "${elbow[@]}" -o "$tmp/e9"
-check "a report over an input is refused (2)" expect_exit 2 "would overwrite input" \
+check "--report-no-timings needs --report (2)" fails_with 2 "requires --report" --report-no-timings "${elbow[@]}" -o "$tmp/e9"
+check "a report over an input is refused (2)" fails_with 2 "would overwrite input" \
   --report data/elbow/patch.txt "${elbow[@]}" -o "$tmp/e10"
-check "--strength below 0 is a usage error (2)" expect_exit 2 "strength" --strength -1 "${elbow[@]}" -o "$tmp/e11"
+check "--strength below 0 is a usage error (2)" fails_with 2 "strength" --strength -1 "${elbow[@]}" -o "$tmp/e11"
 
 finish controls

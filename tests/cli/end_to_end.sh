@@ -5,18 +5,6 @@
 set -u
 source "$(dirname "$0")/harness.sh"
 
-expect_exit() {  # expect_exit CODE OUTDIR ARGS...: runs skinslide, checks the code and that stderr says "error"
-  local code=$1 out=$2
-  shift 2
-  "$bin" -q -o "$out" "$@" 2>"$tmp/stderr"
-  local rc=$?
-  if [ "$rc" -ne "$code" ]; then
-    echo "exit $rc, expected $code: $(cat "$tmp/stderr")" >&2
-    return 1
-  fi
-  grep -q "skinslide: error: " "$tmp/stderr"
-}
-
 no_files() { [ -z "$(ls -A "$1" 2>/dev/null)" ]; }
 
 cd "$root"

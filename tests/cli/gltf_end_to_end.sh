@@ -10,16 +10,8 @@ shared=${SKINSLIDE_SHARED_DIR:-$root/../shared}
 simple="$shared/data/gltf/RiggedSimple.glb"
 patch="$here/gltf/RiggedSimple_bend.txt"
 
-expect_exit() {  # expect_exit CODE OUTDIR ARGS...: the exit code, an error line, no output folder
-  local code=$1 out=$2
-  shift 2
-  "$bin" -q -o "$out" "$@" 2>"$tmp/stderr"
-  local rc=$?
-  if [ "$rc" -ne "$code" ]; then
-    echo "exit $rc, expected $code: $(cat "$tmp/stderr")" >&2
-    return 1
-  fi
-  grep -q "skinslide: error: " "$tmp/stderr" && [ ! -e "$out" ]
+refused() {  # refused CODE OUTDIR ARGS...: expect_exit, and no output folder
+  expect_exit "$@" && [ ! -e "$2" ]
 }
 
 # The character as its own frame source: 50 key times, 4-digit frame numbers from 0000.
@@ -143,12 +135,12 @@ for name in sorted(os.listdir(frames)):
 assert slid[True] > 0 and slid[False] > 0, slid
 PY
 check "a bind without the attribute is an input error (3)" \
-  expect_exit 3 "$tmp/e10" --weights-from-gltf-attribute _SLIDE_WEIGHT "${rig[@]:1}" "$simple"
+  refused 3 "$tmp/e10" --weights-from-gltf-attribute _SLIDE_WEIGHT "${rig[@]:1}" "$simple"
 grep -qF "RiggedSimple.glb: mesh 0 primitive 0: has no _SLIDE_WEIGHT attribute" "$tmp/stderr" ||
   { echo "no attribute message: $(cat "$tmp/stderr")" >&2; failed=$((failed + 1)); }
 add_weights 1.25 "$tmp/wbad.glb"
 check "a weight outside [0, 1] is an input error (3)" \
-  expect_exit 3 "$tmp/e11" --weights-from-gltf-attribute _SLIDE_WEIGHT "${rig[@]:1}" "$tmp/wbad.glb"
+  refused 3 "$tmp/e11" --weights-from-gltf-attribute _SLIDE_WEIGHT "${rig[@]:1}" "$tmp/wbad.glb"
 grep -qF "primitive 0: _SLIDE_WEIGHT accessor 10: element 0 is 1.25, outside [0, 1]" "$tmp/stderr" ||
   { echo "no range message: $(cat "$tmp/stderr")" >&2; failed=$((failed + 1)); }
 
@@ -165,32 +157,32 @@ fi
 
 # Usage errors, caught before any mesh is read.
 check "--fps with --keyframes is refused" \
-  expect_exit 2 "$tmp/e1" --fps 24 --keyframes --animation 0 --patch "$patch" "$simple"
+  refused 2 "$tmp/e1" --fps 24 --keyframes --animation 0 --patch "$patch" "$simple"
 check "--animation with FRAME files is refused" \
-  expect_exit 2 "$tmp/e2" --animation 0 --patch "$patch" "$simple" "$simple"
+  refused 2 "$tmp/e2" --animation 0 --patch "$patch" "$simple" "$simple"
 check "--fps without --animation is refused" \
-  expect_exit 2 "$tmp/e3" --fps 24 --patch "$patch" "$simple" "$simple"
+  refused 2 "$tmp/e3" --fps 24 --patch "$patch" "$simple" "$simple"
 check "--format without --animation is refused" \
-  expect_exit 2 "$tmp/e4" --format obj --patch "$patch" "$simple" "$simple"
+  refused 2 "$tmp/e4" --format obj --patch "$patch" "$simple" "$simple"
 check "--animation with an OBJ bind is refused" \
-  expect_exit 2 "$tmp/e5" --animation 0 --patch "$patch" "$root/data/elbow/bind.obj"
+  refused 2 "$tmp/e5" --animation 0 --patch "$patch" "$root/data/elbow/bind.obj"
 check "no FRAME and no --animation is refused" \
-  expect_exit 2 "$tmp/e6" --patch "$patch" "$simple"
+  refused 2 "$tmp/e6" --patch "$patch" "$simple"
 check "an unknown clip is a usage error listing the clips" \
-  expect_exit 2 "$tmp/e7" --animation Jump --patch "$patch" "$simple"
+  refused 2 "$tmp/e7" --animation Jump --patch "$patch" "$simple"
 grep -q '0 "": 0.042 s to 2.083 s' "$tmp/stderr" || { echo "no clip list: $(cat "$tmp/stderr")" >&2; failed=$((failed + 1)); }
 check "--weights-from-gltf-attribute with an OBJ bind is refused" \
-  expect_exit 2 "$tmp/e12" --weights-from-gltf-attribute _SLIDE_WEIGHT --patch "$root/data/elbow/patch.txt" \
+  refused 2 "$tmp/e12" --weights-from-gltf-attribute _SLIDE_WEIGHT --patch "$root/data/elbow/patch.txt" \
   "$root/data/elbow/bind.obj" "$root/data/elbow/frames/elbow.0001.obj"
 check "--weights-from-gltf-attribute with --weights is refused" \
-  expect_exit 2 "$tmp/e13" --weights-from-gltf-attribute _SLIDE_WEIGHT --weights "$patch" \
+  refused 2 "$tmp/e13" --weights-from-gltf-attribute _SLIDE_WEIGHT --weights "$patch" \
   --animation 0 --patch "$patch" "$simple"
 check "--weights-from-gltf-attribute with --weights-from-obj-color is refused" \
-  expect_exit 2 "$tmp/e14" --weights-from-gltf-attribute _SLIDE_WEIGHT --weights-from-obj-color r \
+  refused 2 "$tmp/e14" --weights-from-gltf-attribute _SLIDE_WEIGHT --weights-from-obj-color r \
   --animation 0 --patch "$patch" "$simple"
 check "an unknown mesh is an input error" \
-  expect_exit 3 "$tmp/e8" --mesh Nose --animation 0 --patch "$patch" "$simple"
+  refused 3 "$tmp/e8" --mesh Nose --animation 0 --patch "$patch" "$simple"
 check "a static (unskinned) character is an input error" \
-  expect_exit 3 "$tmp/e9" --animation 0 --patch "$patch" "$tmp/rs.t1/RiggedSimple.0003.glb"
+  refused 3 "$tmp/e9" --animation 0 --patch "$patch" "$tmp/rs.t1/RiggedSimple.0003.glb"
 
 finish gltf_end_to_end

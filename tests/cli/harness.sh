@@ -19,6 +19,19 @@ check() {  # check NAME COMMAND...
   fi
 }
 
+expect_exit() {  # expect_exit CODE OUTDIR ARGS...: runs skinslide -q -o OUTDIR ARGS, checks the exit code
+  # and that stderr holds an error line
+  local code=$1 out=$2
+  shift 2
+  "$bin" -q -o "$out" "$@" 2>"$tmp/stderr"
+  local rc=$?
+  if [ "$rc" -ne "$code" ]; then
+    echo "exit $rc, expected $code: $(cat "$tmp/stderr")" >&2
+    return 1
+  fi
+  grep -q "skinslide: error: " "$tmp/stderr"
+}
+
 finish() {  # finish NAME: the tally, and the script's exit status
   echo "$1: $passed passed, $failed failed"
   [ "$failed" -eq 0 ]

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "io/gltf.h"
 #include "io/gltf_document.h"
+#include "helpers/samples.h"
 #include "io/gltf_test_util.h"
 #include "pipeline/rig_frames.h"
 #include "pose/animation.h"
@@ -182,15 +183,6 @@ struct Reference {
   }
 };
 
-double bbox_diagonal(const Positions3& p) {
-  Vec3 lo = p[0], hi = p[0];
-  for (const Vec3& x : p) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  return (hi - lo).norm();
-}
-
 TEST(GltfRig, PosingAgreesWithAnIndependentEvaluationOnAllFourCharacters) {
   for (const char* name : {"RiggedSimple.glb", "RiggedFigure.glb", "CesiumMan.glb", "Fox.glb"}) {
     SCOPED_TRACE(name);
@@ -200,7 +192,7 @@ TEST(GltfRig, PosingAgreesWithAnIndependentEvaluationOnAllFourCharacters) {
     ASSERT_TRUE(loader.LoadBinaryFromFile(&ref.model, &err, &warn, shared_gltf(name))) << err;
     const MeshFile f = read_gltf_file(shared_gltf(name), {});
     const Rig rig = gltf_rig(*f.gltf, f.path);
-    const double diag = bbox_diagonal(rig.bind_positions);
+    const double diag = test::diagonal(rig.bind_positions);
     double worst = 0;
     for (size_t a = 0; a < rig.animations.size(); ++a) {
       const Animation& anim = rig.animations[a];
@@ -232,7 +224,7 @@ TEST(GltfRig, RestSkinningIsTheStoredMeshUnderARigidMap) {
     const MeshFile f = read_gltf_file(shared_gltf(name), {});
     const Rig rig = gltf_rig(*f.gltf, f.path);
     const Pose rest = pose_at(rig, nullptr, 0);
-    const double diag = bbox_diagonal(rig.bind_positions);
+    const double diag = test::diagonal(rig.bind_positions);
     double worst = 0;
     for (const auto& t : f.gltf->triangle_raw)
       for (int k = 0; k < 3; ++k) {

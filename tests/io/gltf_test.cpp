@@ -96,21 +96,6 @@ struct Bytes {
   }
 };
 
-std::string base64_for_test(const std::vector<unsigned char>& d) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string s;
-  for (size_t i = 0; i < d.size(); i += 3) {
-    unsigned v = d[i] << 16;
-    if (i + 1 < d.size()) v |= d[i + 1] << 8;
-    if (i + 2 < d.size()) v |= d[i + 2];
-    s += k[(v >> 18) & 63];
-    s += k[(v >> 12) & 63];
-    s += i + 1 < d.size() ? k[(v >> 6) & 63] : '=';
-    s += i + 2 < d.size() ? k[v & 63] : '=';
-  }
-  return s;
-}
-
 const float kNormals0[4][3] = {{0, 0, 1}, {0, -0.6f, 0.8f}, {0.6f, 0, 0.8f}, {0, 0, 1}};
 
 // The JSON with "@BUFFER@" where the buffer's URI goes, and the buffer's bytes.
@@ -171,7 +156,7 @@ std::pair<std::string, std::vector<unsigned char>> handmade_parts() {
 std::string handmade_gltf() {
   auto [json, bytes] = handmade_parts();
   return json.replace(json.find("@BUFFER@"), 8,
-                      "data:application/octet-stream;base64," + base64_for_test(bytes));
+                      "data:application/octet-stream;base64," + testing::base64(bytes));
 }
 
 std::string write_text(const fs::path& path, const std::string& text) {
@@ -476,7 +461,7 @@ TEST(GltfWrite, ExternalBuffersAndImagesStayReachableFromAnotherFolder) {
   json.replace(
       json.find(R"("scene": 0,)"), 11,
       R"("scene": 0, "images": [{"uri": "tex/skin.png"}, {"uri": "data:image/png;base64,)" +
-          base64_for_test(kPng) + R"("}],)");
+          testing::base64(kPng) + R"("}],)");
   fs::create_directories(dir / "in" / "tex");
   fs::create_directories(dir / "out");
   write_file_atomic((dir / "in" / "square.bin").string(),

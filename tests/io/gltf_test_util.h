@@ -13,6 +13,22 @@
 
 namespace skinslide::testing {
 
+/// Standard base64 (with padding), for data-URI buffers written by the tests.
+inline std::string base64(const std::vector<unsigned char>& d) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string s;
+  for (size_t i = 0; i < d.size(); i += 3) {
+    unsigned v = d[i] << 16;
+    if (i + 1 < d.size()) v |= d[i + 1] << 8;
+    if (i + 2 < d.size()) v |= d[i + 2];
+    s += k[(v >> 18) & 63];
+    s += k[(v >> 12) & 63];
+    s += i + 1 < d.size() ? k[(v >> 6) & 63] : '=';
+    s += i + 2 < d.size() ? k[v & 63] : '=';
+  }
+  return s;
+}
+
 inline std::string shared_gltf(const std::string& name) {
   return std::string(SKINSLIDE_SHARED_DIR) + "/data/gltf/" + name;
 }

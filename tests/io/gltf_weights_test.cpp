@@ -30,21 +30,6 @@ using testing::temp_dir;
 //  primitive 2: POINTS over primitive 0's POSITION, without weights (not part of the surface)
 // Welded: raw 0 1 2 3 4 5 -> 0 1 2 1 3 2, so raw 3 and 5 are second copies of welded 1 and 2.
 
-std::string base64(const std::vector<unsigned char>& d) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string s;
-  for (size_t i = 0; i < d.size(); i += 3) {
-    unsigned v = d[i] << 16;
-    if (i + 1 < d.size()) v |= d[i + 1] << 8;
-    if (i + 2 < d.size()) v |= d[i + 2];
-    s += k[(v >> 18) & 63];
-    s += k[(v >> 12) & 63];
-    s += i + 1 < d.size() ? k[(v >> 6) & 63] : '=';
-    s += i + 2 < d.size() ? k[v & 63] : '=';
-  }
-  return s;
-}
-
 template <typename T>
 void put(std::vector<unsigned char>& b, T v) {
   unsigned char bytes[sizeof(T)];
@@ -70,7 +55,7 @@ std::string weighted_gltf(const std::array<float, 3>& w0) {
     {"attributes": {"POSITION": 1, "_SLIDE_WEIGHT": 3}},
     {"attributes": {"POSITION": 0}, "mode": 0}]}],
   "buffers": [{"byteLength": 96, "uri": "data:application/octet-stream;base64,)" +
-         base64(b) + R"("}],
+         testing::base64(b) + R"("}],
   "bufferViews": [
     {"buffer": 0, "byteOffset": 0, "byteLength": 36},
     {"buffer": 0, "byteOffset": 36, "byteLength": 36},
