@@ -21,6 +21,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/allocator.h"
 #include "core/error.h"
 #include "core/version.h"
 #include "io/atomic_write.h"
@@ -514,6 +515,7 @@ int run(const CliOptions& o) {
 
 int main(int argc, char** argv) {
   std::setlocale(LC_ALL, "C");
+  skinslide::keep_freed_memory();
   CliOptions o;
   CLI::App app{
       "skinslide " + std::string(version()) +

@@ -150,27 +150,6 @@ void locate_missed(const Positions2& points, const Positions2& net,
 TriangleTopology triangle_topology(const std::vector<Triangle>& triangles, Index vertex_count) {
   TriangleTopology topo;
   const Index nt = static_cast<Index>(triangles.size());
-  topo.neighbour.assign(triangles.size(), {-1, -1, -1});
-  // Each directed edge (a, b) opposite corner k of triangle t; its twin (b, a) is the neighbour.
-  struct HalfEdge {
-    Index a, b, t, k;
-  };
-  std::vector<HalfEdge> edges;
-  edges.reserve(triangles.size() * 3);
-  for (Index t = 0; t < nt; ++t)
-    for (Index k = 0; k < 3; ++k)
-      edges.push_back({triangles[t][(k + 1) % 3], triangles[t][(k + 2) % 3], t, k});
-  std::sort(edges.begin(), edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return std::tie(x.a, x.b, x.t) < std::tie(y.a, y.b, y.t);
-  });
-  for (const HalfEdge& e : edges) {
-    const HalfEdge key{e.b, e.a, -1, 0};
-    const auto it =
-        std::lower_bound(edges.begin(), edges.end(), key, [](const HalfEdge& x, const HalfEdge& y) {
-          return std::tie(x.a, x.b, x.t) < std::tie(y.a, y.b, y.t);
-        });
-    if (it != edges.end() && it->a == e.b && it->b == e.a) topo.neighbour[e.t][e.k] = it->t;
-  }
   topo.corner_start.assign(static_cast<size_t>(vertex_count) + 1, 0);
   for (const Triangle& t : triangles)
     for (Index v : t) ++topo.corner_start[v + 1];
@@ -180,6 +159,21 @@ TriangleTopology triangle_topology(const std::vector<Triangle>& triangles, Index
   std::vector<Index> fill(topo.corner_start.begin(), topo.corner_start.end() - 1);
   for (Index t = 0; t < nt; ++t)
     for (Index v : triangles[t]) topo.corner_triangles[fill[v]++] = t;  // ascending t
+  // The edge (a, b) opposite corner k of t has its twin (b, a) in a triangle around b: the first
+  // such triangle, in ascending order, is the neighbour.
+  topo.neighbour.assign(triangles.size(), {-1, -1, -1});
+  for (Index t = 0; t < nt; ++t)
+    for (Index k = 0; k < 3; ++k) {
+      const Index a = triangles[t][(k + 1) % 3], b = triangles[t][(k + 2) % 3];
+      for (Index i = topo.corner_start[b]; i < topo.corner_start[b + 1]; ++i) {
+        const Triangle& u = triangles[topo.corner_triangles[i]];
+        const int j = u[0] == b ? 0 : u[1] == b ? 1 : 2;  // b's corner in u: is a next?
+        if (u[(j + 1) % 3] == a) {
+          topo.neighbour[t][k] = topo.corner_triangles[i];
+          break;
+        }
+      }
+    }
   return topo;
 }
 

@@ -17,22 +17,26 @@ std::vector<std::vector<Index>> boundary_loops(const PolyMesh& mesh,
                                                const std::vector<Index>& faces) {
   // Local vertex ids: the sorted mesh ids of the faces' vertices.
   std::vector<Index> verts;
-  for (Index f : faces)
+  size_t corners = 0;
+  for (Index f : faces) {
     verts.insert(verts.end(), mesh.face_begin(f), mesh.face_begin(f) + mesh.face_size(f));
+    corners += static_cast<size_t>(mesh.face_size(f));
+  }
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-  auto local = [&](Index v) {
-    return static_cast<int>(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
-  };
+  std::vector<int> local(verts.empty() ? 0 : static_cast<size_t>(verts.back()) + 1, -1);
+  for (size_t i = 0; i < verts.size(); ++i) local[verts[i]] = static_cast<int>(i);
 
   OmMesh om;
+  // Edges: about half the corners plus half the border; reserving avoids regrowing the arrays.
+  om.reserve(verts.size(), corners / 2 + verts.size() / 8, faces.size());
   std::vector<OmMesh::VertexHandle> vh;
   vh.reserve(verts.size());
   for (size_t i = 0; i < verts.size(); ++i) vh.push_back(om.add_vertex(OmMesh::Point(0, 0, 0)));
   std::vector<OmMesh::VertexHandle> fv;
   for (Index f : faces) {
     fv.clear();
-    for (Index k = 0; k < mesh.face_size(f); ++k) fv.push_back(vh[local(mesh.face_begin(f)[k])]);
+    for (Index k = 0; k < mesh.face_size(f); ++k) fv.push_back(vh[local[mesh.face_begin(f)[k]]]);
     const auto fh = om.add_face(fv);
     SKINSLIDE_CHECK(fh.is_valid(), "OpenMesh refused face " + std::to_string(f));
   }

@@ -54,20 +54,34 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
                       " twice (degenerate face)");
     corner_start[i + 1] = corner_start[i] + n;
   }
-  std::vector<HalfEdge> he;
-  he.reserve(corner_start[nf]);
-  for (Index i = 0; i < nf; ++i) {
-    const Index f = faces[i];
-    const Index* fv = mesh.face_begin(f);
-    const Index n = mesh.face_size(f);
-    for (Index k = 0; k < n; ++k) {
-      const Index u = fv[k], v = fv[(k + 1) % n];
-      he.push_back({std::min(u, v), std::max(u, v), i, k, u, v});
+  // Half-edges sorted by (lo, hi, face, corner): a counting sort by lo, then each vertex's few.
+  Index max_vertex = -1;
+  for (Index i = 0; i < nf; ++i)
+    for (Index k = 0; k < corner_start[i + 1] - corner_start[i]; ++k)
+      max_vertex = std::max(max_vertex, mesh.face_begin(faces[i])[k]);
+  std::vector<Index> lo_start(static_cast<size_t>(max_vertex) + 2, 0);
+  auto for_each_half_edge = [&](auto&& visit) {
+    for (Index i = 0; i < nf; ++i) {
+      const Index* fv = mesh.face_begin(faces[i]);
+      const Index n = corner_start[i + 1] - corner_start[i];
+      for (Index k = 0; k < n; ++k) {
+        const Index u = fv[k], v = fv[(k + 1) % n];
+        visit(HalfEdge{std::min(u, v), std::max(u, v), i, k, u, v});
+      }
     }
+  };
+  for_each_half_edge([&](const HalfEdge& h) { ++lo_start[h.lo + 1]; });
+  for (size_t v = 0; v + 1 < lo_start.size(); ++v) lo_start[v + 1] += lo_start[v];
+  std::vector<HalfEdge> he(corner_start[nf]);
+  {
+    std::vector<Index> next(lo_start.begin(), lo_start.end() - 1);
+    for_each_half_edge([&](const HalfEdge& h) { he[next[h.lo]++] = h; });
   }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& a, const HalfEdge& b) {
-    return std::tie(a.lo, a.hi, a.face, a.corner) < std::tie(b.lo, b.hi, b.face, b.corner);
-  });
+  for (Index v = 0; v <= max_vertex; ++v)
+    std::sort(he.begin() + lo_start[v], he.begin() + lo_start[v + 1],
+              [](const HalfEdge& a, const HalfEdge& b) {
+                return std::tie(a.hi, a.face, a.corner) < std::tie(b.hi, b.face, b.corner);
+              });
 
   UnionFind face_sets(nf);
   UnionFind corner_sets(corner_start[nf]);
@@ -79,10 +93,11 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
   for (size_t s = 0; s < he.size();) {
     size_t e = s;
     while (e < he.size() && he[e].lo == he[s].lo && he[e].hi == he[s].hi) ++e;
-    const std::string edge =
-        "edge (" + std::to_string(he[s].lo) + ", " + std::to_string(he[s].hi) + ")";
+    auto edge = [&] {
+      return "edge (" + std::to_string(he[s].lo) + ", " + std::to_string(he[s].hi) + ")";
+    };
     if (e - s > 2)
-      throw_patch(edge + " is shared by " + std::to_string(e - s) + " selected faces: " +
+      throw_patch(edge() + " is shared by " + std::to_string(e - s) + " selected faces: " +
                   name_face(faces[he[s].face]) + ", " + name_face(faces[he[s + 1].face]) + ", " +
                   name_face(faces[he[s + 2].face]) + " (non-manifold edge)");
     if (e - s == 1) {
@@ -92,7 +107,7 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
       const HalfEdge& b = he[s + 1];
       if (a.from == b.from)
         throw_patch(name_face(faces[a.face]) + " and " + name_face(faces[b.face]) + " traverse " +
-                    edge +
+                    edge() +
                     " in the same direction: the patch is not consistently oriented "
                     "(a flipped face, or a non-orientable patch such as a Moebius strip)");
       face_sets.join(a.face, b.face);
@@ -116,15 +131,6 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
   Selected out;
   out.components.resize(ncomp);
   for (Index i = 0; i < nf; ++i) out.components[comp_of_face[i]].faces.push_back(faces[i]);
-  // Fans: every (component, vertex) must have one corner set.
-  std::vector<std::tuple<Index, Index, Index, Index>> fans;  // comp, vertex, corner root, face
-  fans.reserve(corner_start[nf]);
-  for (Index i = 0; i < nf; ++i) {
-    const Index* fv = mesh.face_begin(faces[i]);
-    for (Index k = 0; k < corner_start[i + 1] - corner_start[i]; ++k)
-      fans.emplace_back(comp_of_face[i], fv[k], corner_sets.find(corner_start[i] + k), faces[i]);
-  }
-  std::sort(fans.begin(), fans.end());
   std::vector<std::pair<Index, Index>> boundary_vertices;  // (comp, vertex)
   for (size_t k = 0; k < he.size(); ++k) {
     if (!boundary_edge[k]) continue;
@@ -134,30 +140,54 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
   std::sort(boundary_vertices.begin(), boundary_vertices.end());
   boundary_vertices.erase(std::unique(boundary_vertices.begin(), boundary_vertices.end()),
                           boundary_vertices.end());
-  for (size_t s = 0; s < fans.size();) {
-    size_t e = s;
-    Index nroots = 0;
-    Index last_root = -1;
-    while (e < fans.size() && std::get<0>(fans[e]) == std::get<0>(fans[s]) &&
-           std::get<1>(fans[e]) == std::get<1>(fans[s])) {
-      if (std::get<2>(fans[e]) != last_root) {
-        ++nroots;
-        last_root = std::get<2>(fans[e]);
-      }
-      ++e;
+  // Fans: every (component, vertex) must have one corner set. The corners are bucketed by vertex
+  // (a counting sort), then each vertex's few corners sorted by (component, set, face).
+  struct Fan {
+    Index comp, root, face;
+    bool operator<(const Fan& o) const {
+      return std::tie(comp, root, face) < std::tie(o.comp, o.root, o.face);
     }
-    const Index c = std::get<0>(fans[s]);
-    const Index v = std::get<1>(fans[s]);
-    if (nroots > 1)
-      throw_patch("vertex " + std::to_string(v) +
-                  " is non-manifold: the selected faces around it (" +
-                  name_face(std::get<3>(fans[s])) + ", ...) form " + std::to_string(nroots) +
-                  " separate fans (a bow-tie); select the faces between them or split the patch");
-    out.components[c].vertices.push_back(v);
-    const bool on_boundary = std::binary_search(boundary_vertices.begin(), boundary_vertices.end(),
-                                                std::make_pair(c, v));
-    out.vertex_roles.emplace_back(v, c, on_boundary);
-    s = e;
+  };
+  std::vector<Index> fan_start(static_cast<size_t>(max_vertex) + 2, 0);
+  for (Index i = 0; i < nf; ++i) {
+    const Index* fv = mesh.face_begin(faces[i]);
+    for (Index k = 0; k < corner_start[i + 1] - corner_start[i]; ++k) ++fan_start[fv[k] + 1];
+  }
+  for (size_t v = 0; v + 1 < fan_start.size(); ++v) fan_start[v + 1] += fan_start[v];
+  std::vector<Fan> fans(corner_start[nf]);
+  {
+    std::vector<Index> next(fan_start.begin(), fan_start.end() - 1);
+    for (Index i = 0; i < nf; ++i) {
+      const Index* fv = mesh.face_begin(faces[i]);
+      for (Index k = 0; k < corner_start[i + 1] - corner_start[i]; ++k)
+        fans[next[fv[k]]++] = {comp_of_face[i], corner_sets.find(corner_start[i] + k), faces[i]};
+    }
+  }
+  for (Index v = 0; v <= max_vertex; ++v) {
+    const auto begin = fans.begin() + fan_start[v], end = fans.begin() + fan_start[v + 1];
+    std::sort(begin, end);
+    for (auto s = begin; s != end;) {
+      auto e = s;
+      Index nroots = 0;
+      Index last_root = -1;
+      while (e != end && e->comp == s->comp) {
+        if (e->root != last_root) {
+          ++nroots;
+          last_root = e->root;
+        }
+        ++e;
+      }
+      if (nroots > 1)
+        throw_patch("vertex " + std::to_string(v) +
+                    " is non-manifold: the selected faces around it (" + name_face(s->face) +
+                    ", ...) form " + std::to_string(nroots) +
+                    " separate fans (a bow-tie); select the faces between them or split the patch");
+      out.components[s->comp].vertices.push_back(v);
+      const bool on_boundary = std::binary_search(
+          boundary_vertices.begin(), boundary_vertices.end(), std::make_pair(s->comp, v));
+      out.vertex_roles.emplace_back(v, s->comp, on_boundary);
+      s = e;
+    }
   }
   for (Index c = 0; c < ncomp; ++c) {
     PatchComponent& comp = out.components[c];

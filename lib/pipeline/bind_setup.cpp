@@ -175,17 +175,41 @@ Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const P
   return solved;
 }
 
+// Mesh vertex -> patch vertex, for one patch at a time: a dense table (one lookup per face corner
+// is the hot path of the set-up) whose entries are reset when the patch is done.
+class LocalIds {
+ public:
+  explicit LocalIds(Index vertex_count) : local_(vertex_count, -1) {}
+  struct Scope {
+    LocalIds& ids;
+    const std::vector<Index>& vertices;
+    Scope(LocalIds& i, const std::vector<Index>& v) : ids(i), vertices(v) {
+      for (size_t k = 0; k < v.size(); ++k) ids.local_[v[k]] = static_cast<Index>(k);
+    }
+    ~Scope() {
+      for (Index v : vertices) ids.local_[v] = -1;
+    }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+    Index operator()(Index v) const {
+      const Index l = v >= 0 && v < static_cast<Index>(ids.local_.size()) ? ids.local_[v] : -1;
+      SKINSLIDE_CHECK(l >= 0, "patch vertex");
+      return l;
+    }
+  };
+
+ private:
+  std::vector<Index> local_;
+};
+
 PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const SlideOptions& options,
-                   const PatchChoice& choice, const std::vector<char>& pinned) {
+                   const PatchChoice& choice, const std::vector<char>& pinned,
+                   LocalIds& local_ids) {
   PatchNet patch;
   patch.selection = comp.selection;
   patch.faces = comp.faces;
   patch.vertices = comp.vertices;
-  auto local = [&](Index v) {
-    const auto it = std::lower_bound(patch.vertices.begin(), patch.vertices.end(), v);
-    SKINSLIDE_CHECK(it != patch.vertices.end() && *it == v, "patch vertex");
-    return static_cast<Index>(it - patch.vertices.begin());
-  };
+  const LocalIds::Scope local(local_ids, patch.vertices);
   for (Index f : patch.faces) {
     const Index* fv = bind.face_begin(f);
     const Index m = bind.face_size(f);
@@ -325,9 +349,10 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
 
   const std::vector<PatchComponent> comps = patch_components(bind, selections, namer);
   const std::vector<PatchChoice> choices = patch_choices(comps, controls, nv);
+  LocalIds local_ids(nv);
   for (size_t c = 0; c < comps.size(); ++c) {
     try {
-      setup.patches.push_back(patch_net(bind, comps[c], options, choices[c], pinned));
+      setup.patches.push_back(patch_net(bind, comps[c], options, choices[c], pinned, local_ids));
     } catch (const Error& e) {
       throw Error(e.kind(), "patch " + std::to_string(c) + " (" + namer(comps[c].faces.front()) +
                                 ", " + std::to_string(comps[c].faces.size()) +

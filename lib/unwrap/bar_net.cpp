@@ -56,22 +56,62 @@ Positions2 scatter(const BarNet& net, const std::vector<Index>& free_id, const M
   return out;
 }
 
+// K_ff = C_f^T Q C_f, assembled straight into compressed columns (both triangles, rows sorted):
+// the diagonal sums q over every bar at the node, in bar order; each bar between two free nodes
+// adds -q at (u, v) and (v, u).
 SparseMatrix free_matrix(const BarNet& net, const std::vector<Index>& free_id,
                          const std::vector<double>& q, Index rows) {
-  std::vector<Triplet> t;
-  t.reserve(net.bars.size() * 4);
+  std::vector<Index> start(static_cast<size_t>(rows) + 1, 0);
+  for (Index r = 0; r < rows; ++r) start[r + 1] = 1;
+  for (const auto& [u, v] : net.bars)
+    if (free_id[u] >= 0 && free_id[v] >= 0) {
+      ++start[free_id[u] + 1];
+      ++start[free_id[v] + 1];
+    }
+  for (Index r = 0; r < rows; ++r) start[r + 1] += start[r];
+  SparseMatrix K(rows, rows);
+  K.resizeNonZeros(start[rows]);
+  Index* outer = K.outerIndexPtr();
+  Index* inner = K.innerIndexPtr();
+  double* value = K.valuePtr();
+  std::copy(start.begin(), start.end(), outer);
+  std::vector<Index> next(start.begin(), start.end() - 1);
+  for (Index r = 0; r < rows; ++r) {  // the diagonal takes the first slot until the sort below
+    inner[next[r]] = r;
+    value[next[r]++] = 0.0;
+  }
   for (size_t i = 0; i < net.bars.size(); ++i) {
-    const auto [u, v] = net.bars[i];
-    const Index fu = free_id[u], fv = free_id[v];
-    if (fu >= 0) t.emplace_back(fu, fu, q[i]);
-    if (fv >= 0) t.emplace_back(fv, fv, q[i]);
+    const Index fu = free_id[net.bars[i][0]], fv = free_id[net.bars[i][1]];
+    if (fu >= 0) value[start[fu]] += q[i];
+    if (fv >= 0) value[start[fv]] += q[i];
     if (fu >= 0 && fv >= 0) {
-      t.emplace_back(fu, fv, -q[i]);
-      t.emplace_back(fv, fu, -q[i]);
+      inner[next[fv]] = fu;
+      value[next[fv]++] = -q[i];
+      inner[next[fu]] = fv;
+      value[next[fu]++] = -q[i];
     }
   }
-  SparseMatrix K(rows, rows);
-  K.setFromTriplets(t.begin(), t.end());
+  for (Index c = 0; c < rows; ++c)  // insertion sort: a column holds a node's few neighbours
+    for (Index k = start[c] + 1; k < start[c + 1]; ++k)
+      for (Index j = k; j > start[c] && inner[j - 1] > inner[j]; --j) {
+        std::swap(inner[j - 1], inner[j]);
+        std::swap(value[j - 1], value[j]);
+      }
+  // Two bars between the same nodes (never in a patch, possible in a hand-made net) share an entry.
+  Index kept = 0;
+  for (Index c = 0; c < rows; ++c) {
+    const Index begin = kept;
+    for (Index k = start[c]; k < start[c + 1]; ++k) {
+      if (kept > begin && inner[kept - 1] == inner[k]) {
+        value[kept - 1] += value[k];
+      } else {
+        inner[kept] = inner[k];
+        value[kept++] = value[k];
+      }
+    }
+    outer[c + 1] = kept;
+  }
+  K.resizeNonZeros(kept);
   return K;
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
 #include "io/patch_file.h"
@@ -143,6 +144,7 @@ int stages(int repeat, const SlideOptions& options, const std::string& out_dir,
 }  // namespace
 
 int main(int argc, char** argv) {
+  keep_freed_memory();  // as the command does
   try {
     int repeat = 1;
     std::string out_dir;

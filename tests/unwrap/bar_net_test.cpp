@@ -36,6 +36,21 @@ TEST(BarNet, ChainOfTwoFreeNodesMatchesTheHandSolution) {
   EXPECT_NEAR(x[2].x(), 1.8, 1e-14);
 }
 
+TEST(BarNet, TwoBarsBetweenTheSameFreeNodesActAsOneWithTheSumOfTheirQ) {
+  BarNet doubled;
+  doubled.node_count = 4;
+  doubled.bars = {{0, 1}, {1, 2}, {2, 1}, {2, 3}};
+  doubled.fixed = {1, 0, 0, 1};
+  const Positions2 start = {{0, 0}, {0, 0}, {0, 0}, {3, 0}};
+  const Positions2 x = solve_bar_net(doubled, {1, 0.5, 1.5, 1}, start);
+  EXPECT_NEAR(x[1].x(), 1.2, 1e-14);  // the chain above: q = 1, 2, 1
+  EXPECT_NEAR(x[2].x(), 1.8, 1e-14);
+  const FrameNetSolver solver(doubled, start);
+  const FrameNetSolution s = solver.solve({1, 0.5, 1.5, 1}, FrameNetOptions{});
+  EXPECT_NEAR(s.positions[1].x(), 1.2, 1e-14);
+  EXPECT_NEAR(s.positions[2].x(), 1.8, 1e-14);
+}
+
 TEST(BarNet, AFreeNodeWithNoPathToAFixedOneIsANumericError) {
   BarNet net;
   net.node_count = 3;
