@@ -57,7 +57,8 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   report.cg_residual = net.residual;
   report.direct_solve = net.direct;
   report.frame_net = std::move(net.positions);
-  report.frame_net_flips = flipped_triangles(report.frame_net, patch.triangles);
+  const Folds folds = count_folds(report.frame_net, patch.triangles);
+  report.frame_net_flips = folds.flipped;
   report.solve_seconds = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
@@ -71,7 +72,7 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
       opt.locate == Locate::Image
           ? locate_points(targets, report.frame_net, patch.triangles, image)
           : locate_points_by_walk(targets, patch.free_vertices, report.frame_net, patch.triangles,
-                                  patch.topology, report.frame_net_flips > 0);
+                                  patch.topology, folds.reversed > 0);
 
   report.locate_seconds = seconds_since(t0);
 

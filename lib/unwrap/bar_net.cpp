@@ -338,7 +338,7 @@ FrameNetSolution FrameNetSolver::solve(const std::vector<double>& q,
   return out;
 }
 
-int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles) {
+Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles) {
   std::vector<double> area(triangles.size());
   int positive = 0, negative = 0;
   for (size_t t = 0; t < triangles.size(); ++t) {
@@ -349,8 +349,16 @@ int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triang
     negative += area[t] < 0;
   }
   const double sign = positive >= negative ? 1.0 : -1.0;
-  return static_cast<int>(
-      std::count_if(area.begin(), area.end(), [&](double a) { return a * sign <= 0; }));
+  Folds folds;
+  for (double a : area) {
+    folds.flipped += a * sign <= 0;
+    folds.reversed += a * sign < 0;
+  }
+  return folds;
+}
+
+int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles) {
+  return count_folds(net, triangles).flipped;
 }
 
 }  // namespace skinslide

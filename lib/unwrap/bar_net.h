@@ -78,6 +78,13 @@ class FrameNetSolver {
   std::shared_ptr<const Symbolic> symbolic_;  // K_ff's symbolic factor (CHOLMOD)
 };
 
+/// How many triangles of a net do not keep the orientation of the majority.
+struct Folds {
+  int flipped = 0;   ///< zero area or of the minority sign (what reports call flips)
+  int reversed = 0;  ///< strictly of the minority sign: the ones that can cover a point twice
+};
+Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles);
+
 /// Triangles of `net` whose signed area is zero or of the minority sign (folds of the net).
 int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles);
 

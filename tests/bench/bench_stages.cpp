@@ -80,7 +80,7 @@ void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3&
     t0 = Clock::now();
     where = locate_points(targets, net.positions, patch.triangles, image);
   } else {
-    const bool folded = flipped_triangles(net.positions, patch.triangles) > 0;
+    const bool folded = count_folds(net.positions, patch.triangles).reversed > 0;
     t0 = Clock::now();
     where = locate_points_by_walk(targets, patch.free_vertices, net.positions, patch.triangles,
                                   patch.topology, folded);

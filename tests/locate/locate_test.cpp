@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "locate/barycentric.h"
+#include "unwrap/bar_net.h"
 
 namespace skinslide {
 namespace {
@@ -141,6 +142,35 @@ TEST(LocateWalk, AgreesWithTheImageFromAnyStartNode) {
     }
   }
   EXPECT_EQ(walked, int(pts.size()));  // a convex net without folds: every walk arrives
+}
+
+// Three nodes on one side of the square make a zero-area triangle (a patch corner whose quad has
+// three loop vertices): a flip in the reports, but it holds no point and covers nothing, so the
+// walk keeps its shortcut and still agrees with the image.
+TEST(LocateWalk, AZeroAreaTriangleOnTheBorderKeepsTheShortcutExact) {
+  Net net = grid(30, 0.3, 7);
+  net.triangles.push_back({0, 1, 2});  // (0, 0), (1/30, 0), (2/30, 0)
+  const Folds folds = count_folds(net.points, net.triangles);
+  EXPECT_EQ(folds.flipped, 1);
+  EXPECT_EQ(folds.reversed, 0);
+  const TriangleTopology topo = triangle_topology(net.triangles, Index(net.points.size()));
+  const IdImage img = id_raster(net.points, net.triangles, 256);
+  std::mt19937 rng{8};
+  std::uniform_real_distribution<double> u(0, 1);
+  Positions2 pts;
+  std::vector<Index> start;
+  for (int k = 0; k < 2000; ++k) {
+    pts.emplace_back(u(rng), 0.1 * u(rng));  // along the side with the sliver
+    start.push_back(Index(k % 31) + 31);     // second row of nodes: not the sliver's
+  }
+  const auto walk =
+      locate_points_by_walk(pts, start, net.points, net.triangles, topo, folds.reversed > 0);
+  const auto image = locate_points(pts, net.points, net.triangles, img);
+  for (size_t k = 0; k < pts.size(); ++k) {
+    EXPECT_NE(walk[k].triangle, Index(net.triangles.size()) - 1) << k;
+    EXPECT_EQ(walk[k].triangle, image[k].triangle) << k;
+    EXPECT_EQ(walk[k].weight, image[k].weight) << k;
+  }
 }
 
 TEST(LocateWalk, ABlockedWalkEndsInTheFallback) {

@@ -51,6 +51,16 @@ TEST(BarNet, TwoBarsBetweenTheSameFreeNodesActAsOneWithTheSumOfTheirQ) {
   EXPECT_NEAR(s.positions[2].x(), 1.8, 1e-14);
 }
 
+TEST(BarNet, ReversedCountsOnlyTheMinoritySignFlippedAlsoZeroArea) {
+  // Three counter-clockwise triangles, one clockwise, one with zero area.
+  const Positions2 p{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 0}, {3, 0}};
+  const std::vector<Triangle> tris{{0, 1, 2}, {1, 3, 2}, {1, 4, 3}, {1, 2, 4}, {1, 4, 5}};
+  const Folds f = count_folds(p, tris);
+  EXPECT_EQ(f.reversed, 1);
+  EXPECT_EQ(f.flipped, 2);
+  EXPECT_EQ(flipped_triangles(p, tris), 2);
+}
+
 TEST(BarNet, AFreeNodeWithNoPathToAFixedOneIsANumericError) {
   BarNet net;
   net.node_count = 3;
