@@ -407,11 +407,16 @@ int run(const CliOptions& o) {
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
   RunReport report;
   const SlideControls controls = slide_controls(o, bind, report);
+  unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
   // --no-slide measures the I/O floor of a run: no bind set-up, frames copied unchanged.
   const BindSetup setup =
-      o.no_slide ? BindSetup{} : bind_setup(bind.mesh, selections, options, controls, [&](Index f) {
-        return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
-      });
+      o.no_slide ? BindSetup{}
+                 : bind_setup(
+                       bind.mesh, selections, options, controls,
+                       [&](Index f) {
+                         return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
+                       },
+                       threads);
   report.bind_seconds = seconds_since(t_run);
   size_t sliding = 0;
   for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
@@ -447,7 +452,6 @@ int run(const CliOptions& o) {
   if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
 
   const size_t count = chosen.size();
-  unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
   threads = static_cast<unsigned>(std::min<size_t>(threads, count));
   cli::Progress progress(count, verbosity, isatty(STDERR_FILENO) != 0);
   std::atomic<size_t> next{0};

@@ -1,6 +1,9 @@
 #include "pipeline/bind_setup.h"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <thread>
 #include <cmath>
 #include <string>
 
@@ -313,7 +316,7 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
 
 BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
                      const SlideOptions& options, const SlideControls& controls,
-                     const FaceNamer& name_face) {
+                     const FaceNamer& name_face, unsigned threads) {
   const FaceNamer namer =
       name_face ? name_face : [](Index f) { return "face " + std::to_string(f); };
   BindSetup setup;
@@ -349,16 +352,33 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
 
   const std::vector<PatchComponent> comps = patch_components(bind, selections, namer);
   const std::vector<PatchChoice> choices = patch_choices(comps, controls, nv);
-  LocalIds local_ids(nv);
-  for (size_t c = 0; c < comps.size(); ++c) {
-    try {
-      setup.patches.push_back(patch_net(bind, comps[c], options, choices[c], pinned, local_ids));
-    } catch (const Error& e) {
-      throw Error(e.kind(), "patch " + std::to_string(c) + " (" + namer(comps[c].faces.front()) +
-                                ", " + std::to_string(comps[c].faces.size()) +
-                                " faces): " + e.what());
+  // Patches are independent: each is set up into its own slot, by as many threads as asked, and
+  // the first failing patch in order decides the error, as in a serial run.
+  std::vector<PatchNet> nets(comps.size());
+  std::vector<std::exception_ptr> failed(comps.size());
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    LocalIds local_ids(nv);
+    for (size_t c; (c = next++) < comps.size();) {
+      try {
+        nets[c] = patch_net(bind, comps[c], options, choices[c], pinned, local_ids);
+      } catch (const Error& e) {
+        failed[c] = std::make_exception_ptr(Error(
+            e.kind(), "patch " + std::to_string(c) + " (" + namer(comps[c].faces.front()) + ", " +
+                          std::to_string(comps[c].faces.size()) + " faces): " + e.what()));
+      } catch (...) {
+        failed[c] = std::current_exception();
+      }
     }
-  }
+  };
+  std::vector<std::thread> helpers;
+  for (size_t t = 1; t < std::min<size_t>(std::max(threads, 1u), comps.size()); ++t)
+    helpers.emplace_back(work);
+  work();
+  for (std::thread& t : helpers) t.join();
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  setup.patches = std::move(nets);
   if (!pinned.empty()) {
     Index distinct = 0, used = 0;
     for (char p : pinned) distinct += p;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
@@ -165,6 +166,15 @@ cholmod_sparse cholmod_view(const SparseMatrix& K) {
   return A;
 }
 
+// The symbolic analysis of A with METIS's ordering. METIS keeps state between calls outside the
+// call (its random number generator), so two patches ordered at once by two threads get orders,
+// and so factors, that depend on the timing: one ordering at a time keeps every run identical.
+cholmod_factor* analyze_with_metis(cholmod_sparse& A, Cholmod& c) {
+  static std::mutex one_at_a_time;
+  const std::lock_guard<std::mutex> lock(one_at_a_time);
+  return cholmod_analyze(&A, c.get());
+}
+
 // Factorises K on a copy of `symbolic` (the analysis of K's pattern) and solves K x = b.
 Mat2 factor_and_solve(const SparseMatrix& K, const Mat2& b, const cholmod_factor* symbolic,
                       Cholmod& c) {
@@ -215,7 +225,7 @@ Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q,
   const Mat2 b = fixed_pull(net, s.free_id, q, positions, rows);
   Cholmod c;
   cholmod_sparse A = cholmod_view(K);
-  cholmod_factor* symbolic = cholmod_analyze(&A, c.get());
+  cholmod_factor* symbolic = analyze_with_metis(A, c);
   if (!symbolic || c->status != CHOLMOD_OK) {
     cholmod_free_factor(&symbolic, c.get());
     throw Error(ErrorKind::Numeric, "bar net: the symbolic analysis failed");
@@ -259,7 +269,7 @@ FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions,
     }
     cholmod_sparse A = cholmod_view(pattern_);
     auto symbolic = std::make_shared<Symbolic>();
-    symbolic->L = node_order.empty() ? cholmod_analyze(&A, c.get())
+    symbolic->L = node_order.empty() ? analyze_with_metis(A, c)
                                      : cholmod_analyze_p(&A, perm.data(), nullptr, 0, c.get());
     if (!symbolic->L || c->status != CHOLMOD_OK)
       throw Error(ErrorKind::Numeric, "bar net: the symbolic analysis failed");

@@ -1,0 +1,79 @@
+// Bind set-up across threads: patches are set up in parallel, one per thread, with the same
+// result as one after another.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "helpers/meshes.h"
+#include "pipeline/bind_setup.h"
+#include "pipeline/slide_frame.h"
+
+namespace skinslide {
+namespace {
+
+// Three 4 x 4 blocks of a 14 x 4 quad grid, one column apart: three patches of one selection.
+struct Blocks {
+  PolyMesh mesh = test::quad_grid(14, 4);
+  std::vector<Index> faces;
+  Blocks() {
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 14; ++i)
+        if (i % 5 != 4) faces.push_back(j * 14 + i);
+  }
+  static Index vertex(int i, int j) { return j * 15 + i; }
+};
+
+// The grid bent about the line x = 7 (between the second and third block) and creased along y.
+Positions3 bent(const PolyMesh& mesh) {
+  Positions3 out;
+  for (const Vec3& p : mesh.positions) {
+    const double a = p.x() > 7 ? 0.8 * (p.x() - 7) / 7 : 0.0;
+    out.emplace_back(7 + (p.x() - 7) * std::cos(a), p.y(),
+                     (p.x() - 7) * std::sin(a) + 0.1 * p.y() * p.y());
+  }
+  return out;
+}
+
+TEST(BindSetup, PatchesSetUpInParallelEqualTheSerialSetUp) {
+  const Blocks b;
+  const BindSetup one = bind_setup(b.mesh, {b.faces}, SlideOptions{}, SlideControls{}, {}, 1);
+  ASSERT_EQ(one.patches.size(), 3u);
+  const Positions3 frame = bent(b.mesh);
+  const SlidVertices slid_one = slide_frame(one, frame).slid;
+  ASSERT_FALSE(slid_one.vertex.empty());
+  for (unsigned threads : {2u, 3u, 8u}) {
+    const BindSetup many =
+        bind_setup(b.mesh, {b.faces}, SlideOptions{}, SlideControls{}, {}, threads);
+    ASSERT_EQ(many.patches.size(), one.patches.size());
+    for (size_t p = 0; p < one.patches.size(); ++p) {
+      EXPECT_EQ(many.patches[p].vertices, one.patches[p].vertices) << threads;
+      EXPECT_EQ(many.patches[p].bind_net, one.patches[p].bind_net) << threads;  // bit for bit
+    }
+    const SlidVertices slid_many = slide_frame(many, frame).slid;
+    EXPECT_EQ(slid_many.vertex, slid_one.vertex);
+    EXPECT_EQ(slid_many.position, slid_one.position);
+  }
+}
+
+TEST(BindSetup, TheFirstFailingPatchInOrderNamesTheErrorWhateverTheThreads) {
+  const Blocks b;
+  SlideControls bad;
+  // Blocks 1 and 2 get their corners out of walking order; block 0 is fine.
+  for (int x0 : {5, 10})
+    bad.corners.push_back({Blocks::vertex(x0, 0), Blocks::vertex(x0 + 4, 4),
+                           Blocks::vertex(x0 + 4, 0), Blocks::vertex(x0, 4)});
+  for (unsigned threads : {1u, 2u, 3u}) {
+    try {
+      bind_setup(b.mesh, {b.faces}, SlideOptions{}, bad, {}, threads);
+      FAIL() << threads;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Usage);
+      EXPECT_EQ(std::string(e.what()).rfind("patch 1 (face 5, 16 faces): --corners 5,", 0), 0u)
+          << threads << ": " << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace skinslide
