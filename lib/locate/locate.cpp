@@ -133,6 +133,49 @@ class TriangleGrid {
   std::vector<Index> items_;
 };
 
+// Where some triangles might hold a point: their bounding boxes, each grown by kInsideEps of its
+// diagonal (and a little more for rounding), marked on a grid over the boxes' extent. A point in
+// no marked cell has a barycentric below -kInsideEps in each of those triangles, so none of them
+// holds it; a marked cell only sends its points down the slow path.
+class NearTriangles {
+ public:
+  NearTriangles(const Positions2& net, const std::vector<Triangle>& triangles,
+                const std::vector<Index>& which)
+      : marked_(kCells * kCells, 0) {
+    std::vector<std::pair<Vec2, Vec2>> boxes;
+    for (Index t : which) {
+      const Vec2& a = net[triangles[t][0]];
+      const Vec2& b = net[triangles[t][1]];
+      const Vec2& c = net[triangles[t][2]];
+      const Vec2 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+      const double grow = 4 * kInsideEps * (hi - lo).norm() + 1e-300;
+      boxes.push_back({lo - Vec2(grow, grow), hi + Vec2(grow, grow)});
+      lo_ = lo_.cwiseMin(boxes.back().first);
+      hi_ = hi_.cwiseMax(boxes.back().second);
+    }
+    for (const auto& [lo, hi] : boxes)
+      for (int j = cell(lo.y(), 1); j <= cell(hi.y(), 1); ++j)
+        for (int i = cell(lo.x(), 0); i <= cell(hi.x(), 0); ++i) marked_[j * kCells + i] = 1;
+  }
+  bool contains(const Vec2& p) const {
+    if (p.x() < lo_.x() || p.y() < lo_.y() || p.x() > hi_.x() || p.y() > hi_.y()) return false;
+    return marked_[cell(p.y(), 1) * kCells + cell(p.x(), 0)] != 0;
+  }
+
+ private:
+  static constexpr int kCells = 128;
+  // Monotone in x, so a point inside a box falls in one of the cells marked for it.
+  int cell(double x, int axis) const {
+    const double f = (x - lo_[axis]) / (hi_[axis] - lo_[axis]) * kCells;
+    if (!(f >= 0)) return 0;  // also NaN, from an extent of zero width
+    return f < kCells ? static_cast<int>(f) : kCells - 1;
+  }
+
+  Vec2 lo_{INFINITY, INFINITY};
+  Vec2 hi_{-INFINITY, -INFINITY};
+  std::vector<char> marked_;
+};
+
 // The fallback for the points the image or the walk did not place.
 void locate_missed(const Positions2& points, const Positions2& net,
                    const std::vector<Triangle>& triangles, const std::vector<size_t>& missed,
@@ -207,7 +250,8 @@ std::vector<Location> locate_points(const Positions2& points, const Positions2& 
 std::vector<Location> locate_points_by_walk(const Positions2& points,
                                             const std::vector<Index>& start, const Positions2& net,
                                             const std::vector<Triangle>& triangles,
-                                            const TriangleTopology& topology, bool folded) {
+                                            const TriangleTopology& topology,
+                                            const std::vector<Index>& reversed) {
   SKINSLIDE_CHECK(!triangles.empty(), "a net with triangles");
   SKINSLIDE_CHECK(start.size() == points.size(), "one start node per point");
   SKINSLIDE_CHECK(topology.neighbour.size() == triangles.size(), "topology of these triangles");
@@ -215,6 +259,7 @@ std::vector<Location> locate_points_by_walk(const Positions2& points,
   std::vector<size_t> missed;
   std::vector<Index> candidates;
   const int max_steps = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(triangles.size())));
+  const NearTriangles near_reversed(net, triangles, reversed);
   for (size_t k = 0; k < points.size(); ++k) {
     const Vec2& p = points[k];
     const Index v = start[k];
@@ -248,7 +293,7 @@ std::vector<Location> locate_points_by_walk(const Positions2& points,
       missed.push_back(k);
       continue;
     }
-    if (!folded && w.min() > 0) {
+    if (w.min() > 0 && !near_reversed.contains(p)) {
       out[k] = Location{t, w.w, false};
       continue;
     }

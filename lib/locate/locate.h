@@ -47,15 +47,18 @@ std::vector<Location> locate_points(const Positions2& points, const Positions2& 
 /// at most 64 + 4 sqrt(#triangles) steps, until a triangle holds the point (all barycentrics
 /// >= -kInsideEps). The candidates are that triangle and every triangle sharing a corner with
 /// it, chosen by the rule of locate_points; a walk that leaves the net or runs out of steps ends
-/// in the same fallback. In a net without reversed triangles a triangle that holds the point
-/// strictly inside is the only candidate that can win, so the others are not evaluated there:
-/// with the loops simple, the triangles of one orientation cover each point at most once, and a
-/// zero-area triangle (three nodes on one side of the square) holds no point.
+/// in the same fallback. Away from the reversed triangles a triangle that holds the point strictly
+/// inside is the only candidate that can win, so the others are not evaluated there: with the
+/// loops simple, the triangles of the majority orientation cover a point twice only where a
+/// reversed triangle covers it too, and a zero-area triangle (three nodes on one side of the
+/// square) holds no point. "Away" is outside every reversed triangle's bounding box grown by
+/// kInsideEps of its size, beyond which none of them can hold the point.
 /// \param start #P node ids; topology from triangle_topology(triangles, net.size()).
-/// \param folded the net has triangles of the minority orientation (count_folds().reversed > 0).
+/// \param reversed the triangles of the minority orientation (count_folds().reversed).
 std::vector<Location> locate_points_by_walk(const Positions2& points,
                                             const std::vector<Index>& start, const Positions2& net,
                                             const std::vector<Triangle>& triangles,
-                                            const TriangleTopology& topology, bool folded);
+                                            const TriangleTopology& topology,
+                                            const std::vector<Index>& reversed);
 
 }  // namespace skinslide

@@ -72,7 +72,7 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
       opt.locate == Locate::Image
           ? locate_points(targets, report.frame_net, patch.triangles, image)
           : locate_points_by_walk(targets, patch.free_vertices, report.frame_net, patch.triangles,
-                                  patch.topology, folds.reversed > 0);
+                                  patch.topology, folds.reversed);
 
   report.locate_seconds = seconds_since(t0);
 

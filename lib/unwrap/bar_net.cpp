@@ -360,9 +360,9 @@ Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles)
   }
   const double sign = positive >= negative ? 1.0 : -1.0;
   Folds folds;
-  for (double a : area) {
-    folds.flipped += a * sign <= 0;
-    folds.reversed += a * sign < 0;
+  for (size_t t = 0; t < area.size(); ++t) {
+    folds.flipped += area[t] * sign <= 0;
+    if (area[t] * sign < 0) folds.reversed.push_back(static_cast<Index>(t));
   }
   return folds;
 }

@@ -80,8 +80,9 @@ class FrameNetSolver {
 
 /// How many triangles of a net do not keep the orientation of the majority.
 struct Folds {
-  int flipped = 0;   ///< zero area or of the minority sign (what reports call flips)
-  int reversed = 0;  ///< strictly of the minority sign: the ones that can cover a point twice
+  int flipped = 0;              ///< zero area or of the minority sign (what reports call flips)
+  std::vector<Index> reversed;  ///< strictly of the minority sign, ascending: the folds that
+                                ///< cover points a second time
 };
 Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles);
 

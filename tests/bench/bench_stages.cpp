@@ -80,10 +80,10 @@ void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3&
     t0 = Clock::now();
     where = locate_points(targets, net.positions, patch.triangles, image);
   } else {
-    const bool folded = count_folds(net.positions, patch.triangles).reversed > 0;
+    const std::vector<Index> reversed = count_folds(net.positions, patch.triangles).reversed;
     t0 = Clock::now();
     where = locate_points_by_walk(targets, patch.free_vertices, net.positions, patch.triangles,
-                                  patch.topology, folded);
+                                  patch.topology, reversed);
   }
   s.add("locate", ms_since(t0));
   size_t fallbacks = 0;

@@ -1,5 +1,7 @@
 #include "locate/locate.h"
 
+#include <algorithm>
+#include <optional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -128,7 +130,7 @@ TEST(LocateWalk, AgreesWithTheImageFromAnyStartNode) {
   }
   pts.push_back(net.points[100]);  // exactly on a node: six triangles hold it
   start.push_back(0);
-  const auto walk = locate_points_by_walk(pts, start, net.points, net.triangles, topo, false);
+  const auto walk = locate_points_by_walk(pts, start, net.points, net.triangles, topo, {});
   const auto image = locate_points(pts, net.points, net.triangles, img);
   int walked = 0;
   for (size_t k = 0; k < pts.size(); ++k) {
@@ -152,7 +154,7 @@ TEST(LocateWalk, AZeroAreaTriangleOnTheBorderKeepsTheShortcutExact) {
   net.triangles.push_back({0, 1, 2});  // (0, 0), (1/30, 0), (2/30, 0)
   const Folds folds = count_folds(net.points, net.triangles);
   EXPECT_EQ(folds.flipped, 1);
-  EXPECT_EQ(folds.reversed, 0);
+  EXPECT_TRUE(folds.reversed.empty());
   const TriangleTopology topo = triangle_topology(net.triangles, Index(net.points.size()));
   const IdImage img = id_raster(net.points, net.triangles, 256);
   std::mt19937 rng{8};
@@ -164,7 +166,7 @@ TEST(LocateWalk, AZeroAreaTriangleOnTheBorderKeepsTheShortcutExact) {
     start.push_back(Index(k % 31) + 31);     // second row of nodes: not the sliver's
   }
   const auto walk =
-      locate_points_by_walk(pts, start, net.points, net.triangles, topo, folds.reversed > 0);
+      locate_points_by_walk(pts, start, net.points, net.triangles, topo, folds.reversed);
   const auto image = locate_points(pts, net.points, net.triangles, img);
   for (size_t k = 0; k < pts.size(); ++k) {
     EXPECT_NE(walk[k].triangle, Index(net.triangles.size()) - 1) << k;
@@ -173,13 +175,75 @@ TEST(LocateWalk, AZeroAreaTriangleOnTheBorderKeepsTheShortcutExact) {
   }
 }
 
+// The documented rule over every triangle: the holder with the largest smallest barycentric, then
+// the lowest index.
+std::optional<Location> best_of_all(const Vec2& p, const Net& net) {
+  std::optional<Location> best;
+  for (Index t = 0; t < Index(net.triangles.size()); ++t) {
+    const Triangle& tri = net.triangles[t];
+    const Barycentric w =
+        barycentric(p, net.points[tri[0]], net.points[tri[1]], net.points[tri[2]]);
+    if (w.ok && w.min() >= -kInsideEps &&
+        (!best || w.min() > *std::min_element(best->weight.begin(), best->weight.end())))
+      best = Location{t, w.w, false};
+  }
+  return best;
+}
+
+// A node pushed across its neighbours folds the net. Away from the reversed triangles the walk
+// takes its shortcut: every point gets what the full search gives it, and away from the fold
+// that is the triangle the rule picks among all triangles.
+TEST(LocateWalk, InAFoldedNetTheShortcutChangesNoResult) {
+  Net net = grid(30, 0.3, 9);
+  net.points[15 * 31 + 15] += Vec2(1.6 / 30, 0.7 / 30);
+  const Folds folds = count_folds(net.points, net.triangles);
+  ASSERT_FALSE(folds.reversed.empty());
+  const TriangleTopology topo = triangle_topology(net.triangles, Index(net.points.size()));
+  std::mt19937 rng{10};
+  std::uniform_real_distribution<double> u(0, 1), fold(0.5, 0.56);
+  std::uniform_int_distribution<Index> node(0, Index(net.points.size()) - 1);
+  Positions2 pts;
+  std::vector<Index> start;
+  for (int k = 0; k < 4000; ++k) {
+    pts.push_back(k % 2 ? Vec2(u(rng), u(rng)) : Vec2(fold(rng), fold(rng)));
+    start.push_back(node(rng));
+  }
+  const auto walk =
+      locate_points_by_walk(pts, start, net.points, net.triangles, topo, folds.reversed);
+  // Listing every triangle as reversed turns the shortcut off: the full search, as reference.
+  std::vector<Index> every(net.triangles.size());
+  for (size_t t = 0; t < every.size(); ++t) every[t] = Index(t);
+  const auto full = locate_points_by_walk(pts, start, net.points, net.triangles, topo, every);
+  int away = 0, overlapped = 0;
+  for (size_t k = 0; k < pts.size(); ++k) {
+    EXPECT_EQ(walk[k].triangle, full[k].triangle) << k;
+    EXPECT_EQ(walk[k].weight, full[k].weight) << k;
+    int holders = 0;
+    for (const Triangle& t : net.triangles) {
+      const Barycentric w =
+          barycentric(pts[k], net.points[t[0]], net.points[t[1]], net.points[t[2]]);
+      holders += w.ok && w.min() >= -kInsideEps;
+    }
+    overlapped += holders > 1 && walk[k].weight[0] > 0 && walk[k].weight[1] > 0 &&
+                  walk[k].weight[2] > 0;  // covered twice, not on a shared edge or corner
+    if ((pts[k] - Vec2(0.5, 0.5)).norm() < 0.15) continue;  // the fold and its overlaps
+    ++away;
+    const auto rule = best_of_all(pts[k], net);
+    ASSERT_TRUE(rule);
+    EXPECT_EQ(walk[k].triangle, rule->triangle) << k;
+    EXPECT_EQ(walk[k].weight, rule->weight) << k;
+  }
+  EXPECT_GT(away, 1500);
+  EXPECT_GT(overlapped, 20);  // the fold does cover some points more than once
+}
+
 TEST(LocateWalk, ABlockedWalkEndsInTheFallback) {
   // Two triangles that share no edge: the walk from the first cannot reach the second.
   const Positions2 net{{0, 0}, {0.5, 0}, {0, 0.5}, {0.9, 0.9}, {1, 0.9}, {0.9, 1}};
   const std::vector<Triangle> tris{{0, 1, 2}, {3, 4, 5}};
   const TriangleTopology topo = triangle_topology(tris, 6);
-  const auto loc = locate_points_by_walk({{0.95, 0.95}, {0.1, 0.1}, {0.6, 0.1}}, {0, 0, 0}, net,
-                                         tris, topo, false);
+  const auto loc =
+      locate_points_by_walk({{0.95, 0.95}, {0.1, 0.1}, {0.6, 0.1}}, {0, 0, 0}, net, tris, topo, {});
   EXPECT_TRUE(loc[0].fallback);
   EXPECT_EQ(loc[0].triangle, 1);
   EXPECT_FALSE(loc[1].fallback);
@@ -195,7 +259,7 @@ TEST(LocateWalk, InAFoldedNetTheBestOfTheOverlappingTrianglesWins) {
   const std::vector<Triangle> tris{{0, 1, 2}, {0, 3, 1}};
   const TriangleTopology topo = triangle_topology(tris, 4);
   const Vec2 p(0.6, 0.15);
-  const auto folded = locate_points_by_walk({p}, {2}, net, tris, topo, true);
+  const auto folded = locate_points_by_walk({p}, {2}, net, tris, topo, {1});
   EXPECT_EQ(folded[0].triangle, 1);
   EXPECT_NEAR(folded[0].weight[0], 1.0 / 3.0, 1e-15);
 }

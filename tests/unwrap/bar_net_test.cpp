@@ -56,7 +56,7 @@ TEST(BarNet, ReversedCountsOnlyTheMinoritySignFlippedAlsoZeroArea) {
   const Positions2 p{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 0}, {3, 0}};
   const std::vector<Triangle> tris{{0, 1, 2}, {1, 3, 2}, {1, 4, 3}, {1, 2, 4}, {1, 4, 5}};
   const Folds f = count_folds(p, tris);
-  EXPECT_EQ(f.reversed, 1);
+  EXPECT_EQ(f.reversed, std::vector<Index>{3});
   EXPECT_EQ(f.flipped, 2);
   EXPECT_EQ(flipped_triangles(p, tris), 2);
 }
