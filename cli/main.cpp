@@ -487,6 +487,9 @@ int run(const CliOptions& o) {
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread& t : pool) t.join();
   progress.finish();
+  // Each output was flushed before its rename; flushing the folders makes the renames durable.
+  for (const std::string& folder : {o.output, o.dump_dir, o.preview_dir})
+    if (!folder.empty()) sync_folder(folder);
   size_t failed = 0;
   const Error* first = nullptr;
   for (const auto& e : errors)
@@ -505,6 +508,8 @@ int run(const CliOptions& o) {
     // --keep-going: the report lists the frames written.
     std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });
     write_file_atomic(o.report, report_json(setup, report));
+    const fs::path report_folder = fs::path(o.report).parent_path();
+    sync_folder(report_folder.empty() ? "." : report_folder.string());
   }
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
     std::fprintf(stderr, "skinslide: %zu frames %s%s in %.2f s -> %s\n", count - failed,

@@ -72,6 +72,17 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
   }
 }
 
+void sync_folder(const std::string& folder) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw_output(folder, std::strerror(errno));
+  if (::fsync(fd) != 0 && errno != EINVAL) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd);
+    throw_output(folder, reason);
+  }
+  ::close(fd);
+}
+
 std::string read_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))

@@ -21,6 +21,20 @@ TEST(AtomicWrite, WritesReplacesAndLeavesNoTemporary) {
   EXPECT_EQ(files, 1);
 }
 
+TEST(AtomicWrite, SyncingAFolderWorksOnAFolderAndNamesAMissingOne) {
+  const std::string dir = test::temp_dir("atomic_sync");
+  write_file_atomic(dir + "/a.obj", "a");
+  EXPECT_NO_THROW(sync_folder(dir));
+  try {
+    sync_folder(dir + "/missing");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Output);
+    EXPECT_NE(std::string(e.what()).find(dir + "/missing: cannot write: "), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(AtomicWrite, FailuresAreOutputErrorsNamingThePath) {
   const std::string dir = test::temp_dir("atomic_fail");
   try {
