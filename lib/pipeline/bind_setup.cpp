@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
-#include <thread>
 #include <cmath>
+#include <exception>
 #include <string>
+#include <thread>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -212,7 +212,8 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   patch.selection = comp.selection;
   patch.faces = comp.faces;
   patch.vertices = comp.vertices;
-  const LocalIds::Scope local(local_ids, patch.vertices);
+  // comp outlives the patch's return (which may move patch.vertices away first).
+  const LocalIds::Scope local(local_ids, comp.vertices);
   for (Index f : patch.faces) {
     const Index* fv = bind.face_begin(f);
     const Index m = bind.face_size(f);
