@@ -17,8 +17,8 @@ struct BarNet {
   std::vector<char> fixed;  ///< #nodes; 1 = fixed
 };
 
-/// Equilibrium of the net by a direct sparse solve (CHOLMOD LDL^T with a METIS ordering, x and
-/// y together).
+/// Equilibrium of the net by a direct sparse solve (CHOLMOD LDL^T with its nested-dissection
+/// ordering, x and y together).
 /// \param q one force density per bar (> 0)
 /// \param positions #nodes; the entries of fixed nodes are used, the others ignored
 /// \param node_order if given, receives the free nodes in the factorisation's fill-reducing
@@ -51,14 +51,14 @@ struct FrameNetSolution {
 
 /// Solves the same net (same bars, same fixed nodes at the same positions) for many q vectors
 /// (the paper's frame unwrap, section III.E). Built once: the free system's sparsity pattern, the
-/// slot of each bar in it, a fill-reducing ordering (METIS nested dissection) and the symbolic
+/// slot of each bar in it, a fill-reducing ordering (CHOLMOD's nested dissection) and the symbolic
 /// Cholesky factor. Per solve only values change. `solve` is const and thread-safe: each call
 /// owns its numeric factor, so frames can be solved in parallel with identical results.
 class FrameNetSolver {
  public:
   /// \param positions #nodes: fixed nodes at their positions, free nodes at the warm start
   /// \param node_order a fill-reducing order of (a superset of) the free nodes, e.g. from
-  ///        solve_bar_net on the bind net; other nodes in it are skipped. Empty: METIS's own.
+  ///        solve_bar_net on the bind net; other nodes in it are skipped. Empty: a new one.
   /// \throw Error(Numeric) when the symbolic analysis fails.
   FrameNetSolver(BarNet net, Positions2 positions, const std::vector<Index>& node_order = {});
   /// \param q one force density per bar (> 0)
