@@ -32,8 +32,10 @@ double diagonal(const Positions3& p) {
   return (hi - lo).norm();
 }
 
-// Ericson, Real-Time Collision Detection 5.1.5.
-double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+namespace {
+// Ericson, Real-Time Collision Detection 5.1.5; divides by the area, so not finite on a
+// degenerate triangle.
+double ericson_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return (p - a).norm();
@@ -52,6 +54,28 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
     return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
   const double den = 1 / (va + vb + vc);
   return (p - (a + ab * vb * den + ac * vc * den)).norm();
+}
+}  // namespace
+
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double d = ericson_distance(p, a, b, c);
+  if (std::isfinite(d)) return d;
+  // A degenerate triangle (a segment or a point): the nearest of its edges.
+  auto segment = [&](const Vec3& u, const Vec3& v) {
+    const double l2 = (v - u).squaredNorm();
+    const double t = l2 > 0 ? std::clamp((p - u).dot(v - u) / l2, 0.0, 1.0) : 0.0;
+    return (p - (u + t * (v - u))).norm();
+  };
+  return std::min({segment(a, b), segment(b, c), segment(c, a)});
+}
+
+double distance_to_patch(const PatchNet& patch, const Positions3& frame, const Vec3& x) {
+  double best = INFINITY;
+  for (const Triangle& t : patch.triangles)
+    best = std::min(
+        best, point_triangle_distance(x, frame[patch.vertices[t[0]]], frame[patch.vertices[t[1]]],
+                                      frame[patch.vertices[t[2]]]));
+  return best;
 }
 
 double edge_log_spread(const PatchNet& patch, const Positions3& bind, const Positions3& x) {

@@ -21,8 +21,12 @@ Sample load_sample(const std::string& name);
 /// Bounding-box diagonal of the points.
 double diagonal(const Positions3& points);
 
-/// Exact distance from p to the 3D triangle abc.
+/// Exact distance from p to the 3D triangle abc, also when abc is degenerate (a segment or a
+/// point).
 double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// Distance from x to the nearest triangle of the patch, with the patch's vertices at `frame`.
+double distance_to_patch(const PatchNet& patch, const Positions3& frame, const Vec3& x);
 
 /// std of log(L / L_bind) over the patch's bars: how unevenly the patch is stretched (the measure
 /// of README "Choosing the defaults"), computed here independently of the library's report.

@@ -24,15 +24,7 @@ Positions3 slid(const BindSetup& setup, const Positions3& frame) {
   return apply_slide(frame, slide_frame(setup, frame).slid);
 }
 
-// Distance from x to the nearest triangle of the patch in `frame`.
-double distance_to_patch(const PatchNet& patch, const Positions3& frame, const Vec3& x) {
-  double best = INFINITY;
-  for (const Triangle& t : patch.triangles)
-    best = std::min(best, test::point_triangle_distance(x, frame[patch.vertices[t[0]]],
-                                                        frame[patch.vertices[t[1]]],
-                                                        frame[patch.vertices[t[2]]]));
-  return best;
-}
+using test::distance_to_patch;
 
 std::string usage_error(const PolyMesh& bind, const std::vector<Index>& faces,
                         const SlideControls& c) {

@@ -21,8 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::diagonal;
+using test::distance_to_patch;
 using test::edge_log_spread;
-using test::point_triangle_distance;
 
 struct Mode {
   Density density;
@@ -56,15 +56,9 @@ TEST_P(SampleCases, DefaultSlideKeepsTheInvariants) {
       EXPECT_EQ(flipped_triangles(r.patches[p].frame_net, patch.triangles), 0) << "frame " << f;
       EXPECT_FALSE(r.patches[p].direct_solve);
       // Every slid vertex lies on the frame's patch surface.
-      for (Index lv : patch.free_vertices) {
-        const Vec3& x = out[patch.vertices[lv]];
-        double best = INFINITY;
-        for (const Triangle& t : patch.triangles)
-          best = std::min(best, point_triangle_distance(x, frame[patch.vertices[t[0]]],
-                                                        frame[patch.vertices[t[1]]],
-                                                        frame[patch.vertices[t[2]]]));
-        ASSERT_LT(best, 1e-9 * diag) << "vertex " << patch.vertices[lv];
-      }
+      for (Index lv : patch.free_vertices)
+        ASSERT_LT(distance_to_patch(patch, frame, out[patch.vertices[lv]]), 1e-9 * diag)
+            << "vertex " << patch.vertices[lv];
     }
   }
 }
@@ -136,19 +130,6 @@ TEST(SlideFrame, AHalfStretchedSheetSlidesTowardsTheStretchedSide) {
             edge_log_spread(setup.patches[0], bind.positions, frame));
 }
 
-// Distance to a triangle that may be degenerate (a segment or a point): Ericson's formula, or the
-// nearest of its edges where that formula divides by a zero area.
-double distance_to_any_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double d = point_triangle_distance(p, a, b, c);
-  if (std::isfinite(d)) return d;
-  auto segment = [&](const Vec3& u, const Vec3& v) {
-    const double l2 = (v - u).squaredNorm();
-    const double t = l2 > 0 ? std::clamp((p - u).dot(v - u) / l2, 0.0, 1.0) : 0.0;
-    return (p - (u + t * (v - u))).norm();
-  };
-  return std::min({segment(a, b), segment(b, c), segment(c, a)});
-}
-
 // Runs `frame` through `setup` and checks what degenerate input must never break: every output
 // finite, outside and border vertices untouched, every slid vertex on the frame's patch surface.
 void expect_finite_and_on_surface(const BindSetup& setup, const Positions3& frame,
@@ -166,15 +147,9 @@ void expect_finite_and_on_surface(const BindSetup& setup, const Positions3& fram
       if (!free[lv]) {
         EXPECT_EQ(out[patch.vertices[lv]], frame[patch.vertices[lv]]);
       }
-    for (Index lv : patch.free_vertices) {
-      const Vec3& x = out[patch.vertices[lv]];
-      double best = INFINITY;
-      for (const Triangle& t : patch.triangles)
-        best = std::min(best, distance_to_any_triangle(x, frame[patch.vertices[t[0]]],
-                                                       frame[patch.vertices[t[1]]],
-                                                       frame[patch.vertices[t[2]]]));
-      ASSERT_LE(best, 1e-9 * diag) << "vertex " << patch.vertices[lv];
-    }
+    for (Index lv : patch.free_vertices)
+      ASSERT_LE(distance_to_patch(patch, frame, out[patch.vertices[lv]]), 1e-9 * diag)
+          << "vertex " << patch.vertices[lv];
   }
 }
 
