@@ -1,0 +1,379 @@
+#include "unwrap/multigrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "core/check.h"
+
+namespace skinslide {
+namespace {
+
+using Level = AggregationMultigrid::Level;
+using Mat2 = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+
+// Vectors hold the two columns interleaved (x0 y0 x1 y1 ...): a row's two values share a cache line.
+using Vec = std::vector<double>;
+
+constexpr Index kCoarsestRows = 200;      // solved by a dense factorisation
+constexpr double kStrongCoupling = 0.25;  // a neighbour is strong at >= 1/4 of the row's largest
+constexpr double kInnerReduction = 0.25;  // K-cycle: one inner iteration suffices below this
+
+// Pairs each row with its strongest unpaired neighbour, in row order (deterministic). Returns the
+// pair index of every row and the number of pairs (singletons count as pairs of one).
+Index pair_rows(const Level& level, const Vec& value, std::vector<Index>& pair) {
+  const Index n = level.rows;
+  pair.assign(n, -1);
+  Index pairs = 0;
+  for (Index i = 0; i < n; ++i) {
+    if (pair[i] >= 0) continue;
+    double largest = 0;
+    for (Index k = level.start[i]; k < level.start[i + 1]; ++k)
+      if (level.column[k] != i) largest = std::max(largest, -value[k]);
+    Index best = -1;
+    double best_value = 0;
+    for (Index k = level.start[i]; k < level.start[i + 1]; ++k) {
+      const Index j = level.column[k];
+      if (j == i || pair[j] >= 0) continue;
+      const double a = -value[k];
+      if (a >= kStrongCoupling * largest && a > best_value) {
+        best = j;
+        best_value = a;
+      }
+    }
+    pair[i] = pairs;
+    if (best >= 0) pair[best] = pairs;
+    ++pairs;
+  }
+  return pairs;
+}
+
+// The pattern of P^T A P for piecewise-constant P (rows summed by aggregate), with the slot of
+// each fine nonzero in it.
+Level coarse_level(Level& fine, const std::vector<Index>& aggregate, Index coarse_rows) {
+  fine.aggregate = aggregate;
+  Level coarse;
+  coarse.rows = coarse_rows;
+  // Fine rows grouped by aggregate (counting sort), then each coarse row's columns collected.
+  std::vector<Index> first(coarse_rows + 1, 0), members(fine.rows);
+  for (Index i = 0; i < fine.rows; ++i) ++first[aggregate[i] + 1];
+  for (Index c = 0; c < coarse_rows; ++c) first[c + 1] += first[c];
+  {
+    std::vector<Index> next(first.begin(), first.end() - 1);
+    for (Index i = 0; i < fine.rows; ++i) members[next[aggregate[i]]++] = i;
+  }
+  coarse.start.assign(1, 0);
+  fine.coarse_slot.assign(fine.column.size(), -1);
+  std::vector<Index> slot_of(coarse_rows, -1);  // coarse column -> slot in the current coarse row
+  std::vector<Index> columns;
+  for (Index c = 0; c < coarse_rows; ++c) {
+    columns.clear();
+    for (Index m = first[c]; m < first[c + 1]; ++m) {
+      const Index i = members[m];
+      for (Index k = fine.start[i]; k < fine.start[i + 1]; ++k) {
+        const Index cj = aggregate[fine.column[k]];
+        if (slot_of[cj] < 0) {
+          slot_of[cj] = 0;
+          columns.push_back(cj);
+        }
+      }
+    }
+    std::sort(columns.begin(), columns.end());
+    const Index base = static_cast<Index>(coarse.column.size());
+    for (size_t s = 0; s < columns.size(); ++s) {
+      slot_of[columns[s]] = base + static_cast<Index>(s);
+      coarse.column.push_back(columns[s]);
+      if (columns[s] == c) coarse.diagonal.push_back(base + static_cast<Index>(s));
+    }
+    for (Index m = first[c]; m < first[c + 1]; ++m) {
+      const Index i = members[m];
+      for (Index k = fine.start[i]; k < fine.start[i + 1]; ++k)
+        fine.coarse_slot[k] = slot_of[aggregate[fine.column[k]]];
+    }
+    for (Index cj : columns) slot_of[cj] = -1;
+    coarse.start.push_back(static_cast<Index>(coarse.column.size()));
+  }
+  return coarse;
+}
+
+Vec coarse_values(const Level& fine, const Vec& value, size_t coarse_nonzeros) {
+  Vec out(coarse_nonzeros, 0.0);
+  for (size_t k = 0; k < value.size(); ++k) out[fine.coarse_slot[k]] += value[k];
+  return out;
+}
+
+double dot(const Vec& a, const Vec& b, int c) {
+  double s = 0;
+  for (size_t i = c; i < a.size(); i += 2) s += a[i] * b[i];
+  return s;
+}
+
+// y = A x
+void multiply(const Level& L, const Vec& A, const Vec& x, Vec& y) {
+  for (Index i = 0; i < L.rows; ++i) {
+    double s0 = 0, s1 = 0;
+    for (Index k = L.start[i]; k < L.start[i + 1]; ++k) {
+      const Index j = L.column[k];
+      s0 += A[k] * x[2 * j];
+      s1 += A[k] * x[2 * j + 1];
+    }
+    y[2 * i] = s0;
+    y[2 * i + 1] = s1;
+  }
+}
+
+void relax_row(const Level& L, const Vec& A, const Vec& inverse_diagonal, const Vec& b, Vec& x,
+               Index i) {
+  double s0 = b[2 * i], s1 = b[2 * i + 1];
+  for (Index k = L.start[i]; k < L.start[i + 1]; ++k) {
+    const Index j = L.column[k];
+    s0 -= A[k] * x[2 * j];
+    s1 -= A[k] * x[2 * j + 1];
+  }
+  const double d = inverse_diagonal[i];
+  x[2 * i] += s0 * d;
+  x[2 * i + 1] += s1 * d;
+}
+
+// The per-solve values: every level's matrix, the coarsest level's factor, and work vectors.
+// A level's vectors are reused by every visit: visits to one level never overlap.
+struct Numeric {
+  const std::vector<Level>* levels;
+  std::vector<Vec> value;
+  std::vector<Vec> inverse_diagonal;  // a sweep multiplies: a division would lengthen the chain
+  Eigen::LLT<Eigen::MatrixXd> coarsest;
+  struct Work {
+    Vec rc, zc;              // kcycle: the restricted residual and its correction (next level)
+    Vec c1, v1, r2, c2, v2;  // coarse_correction on this level
+  };
+  std::vector<Work> work;
+};
+
+void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z);
+
+// Approximates the solution of A_l zc = rc by two steps of flexible CG preconditioned by the
+// next K-cycle (one when the first already reduces the residual enough).
+void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
+  const Level& C = (*N.levels)[l];
+  const Vec& A = N.value[l];
+  Numeric::Work& w = N.work[l];
+  const size_t n = rc.size();
+  kcycle(N, l, rc, w.c1);
+  multiply(C, A, w.c1, w.v1);
+  double rho1[2], alpha1[2], r2norm[2], rcnorm[2];
+  w.r2 = rc;
+  for (int c = 0; c < 2; ++c) {
+    rho1[c] = dot(w.c1, w.v1, c);
+    alpha1[c] = dot(w.c1, rc, c);
+    const double t = rho1[c] > 0 ? alpha1[c] / rho1[c] : 0.0;
+    for (size_t i = c; i < n; i += 2) w.r2[i] -= t * w.v1[i];
+    r2norm[c] = dot(w.r2, w.r2, c);
+    rcnorm[c] = dot(rc, rc, c);
+  }
+  const bool enough = r2norm[0] <= kInnerReduction * kInnerReduction * rcnorm[0] &&
+                      r2norm[1] <= kInnerReduction * kInnerReduction * rcnorm[1];
+  if (enough) {
+    for (int c = 0; c < 2; ++c) {
+      const double t = rho1[c] > 0 ? alpha1[c] / rho1[c] : 0.0;
+      for (size_t i = c; i < n; i += 2) zc[i] = t * w.c1[i];
+    }
+    return;
+  }
+  kcycle(N, l, w.r2, w.c2);
+  multiply(C, A, w.c2, w.v2);
+  for (int c = 0; c < 2; ++c) {
+    if (!(rho1[c] > 0)) {
+      for (size_t i = c; i < n; i += 2) zc[i] = 0;
+      continue;
+    }
+    const double gamma = dot(w.c2, w.v1, c), beta = dot(w.c2, w.v2, c),
+                 alpha2 = dot(w.c2, w.r2, c);
+    const double rho2 = beta - gamma * gamma / rho1[c];
+    const double t1 = rho2 > 0 ? alpha1[c] / rho1[c] - gamma * alpha2 / (rho1[c] * rho2)
+                               : alpha1[c] / rho1[c];
+    const double t2 = rho2 > 0 ? alpha2 / rho2 : 0.0;
+    for (size_t i = c; i < n; i += 2) zc[i] = t1 * w.c1[i] + t2 * w.c2[i];
+  }
+}
+
+// z = an approximation of A_l^{-1} r: forward Gauss-Seidel from zero, coarse correction, backward
+// Gauss-Seidel (a symmetric smoother around the correction).
+void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
+  const std::vector<Level>& levels = *N.levels;
+  const Level& L = levels[l];
+  const Vec& A = N.value[l];
+  if (l + 1 == levels.size()) {
+    Eigen::MatrixXd rhs(L.rows, 2);
+    for (Index i = 0; i < L.rows; ++i) rhs.row(i) << r[2 * i], r[2 * i + 1];
+    const Eigen::MatrixXd sol = N.coarsest.solve(rhs);
+    for (Index i = 0; i < L.rows; ++i) {
+      z[2 * i] = sol(i, 0);
+      z[2 * i + 1] = sol(i, 1);
+    }
+    return;
+  }
+  // From zero, the forward sweep reads only the strictly lower part, and afterwards row i's
+  // residual is what the strictly upper part takes: -sum_{j>i} a_ij z_j. Both are half a pass.
+  for (Index i = 0; i < L.rows; ++i) {
+    double s0 = r[2 * i], s1 = r[2 * i + 1];
+    for (Index k = L.start[i]; k < L.diagonal[i]; ++k) {
+      const Index j = L.column[k];
+      s0 -= A[k] * z[2 * j];
+      s1 -= A[k] * z[2 * j + 1];
+    }
+    const double d = N.inverse_diagonal[l][i];
+    z[2 * i] = s0 * d;
+    z[2 * i + 1] = s1 * d;
+  }
+  Numeric::Work& w = N.work[l];
+  std::fill(w.rc.begin(), w.rc.end(), 0.0);
+  for (Index i = 0; i < L.rows; ++i) {
+    double s0 = 0, s1 = 0;
+    for (Index k = L.diagonal[i] + 1; k < L.start[i + 1]; ++k) {
+      const Index j = L.column[k];
+      s0 -= A[k] * z[2 * j];
+      s1 -= A[k] * z[2 * j + 1];
+    }
+    w.rc[2 * L.aggregate[i]] += s0;
+    w.rc[2 * L.aggregate[i] + 1] += s1;
+  }
+  if (l + 2 == levels.size())
+    kcycle(N, l + 1, w.rc, w.zc);
+  else
+    coarse_correction(N, l + 1, w.rc, w.zc);
+  for (Index i = 0; i < L.rows; ++i) {
+    z[2 * i] += w.zc[2 * L.aggregate[i]];
+    z[2 * i + 1] += w.zc[2 * L.aggregate[i] + 1];
+  }
+  for (Index i = L.rows; i-- > 0;) relax_row(L, A, N.inverse_diagonal[l], r, z, i);
+}
+
+}  // namespace
+
+AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
+  SKINSLIDE_CHECK(A.rows() == A.cols() && A.isCompressed(), "a square compressed matrix");
+  Level top;
+  top.rows = static_cast<Index>(A.rows());
+  top.start.assign(A.outerIndexPtr(), A.outerIndexPtr() + top.rows + 1);
+  top.column.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  top.diagonal.assign(top.rows, -1);
+  for (Index i = 0; i < top.rows; ++i)
+    for (Index k = top.start[i]; k < top.start[i + 1]; ++k)
+      if (top.column[k] == i) top.diagonal[i] = k;
+  for (Index d : top.diagonal) SKINSLIDE_CHECK(d >= 0, "every row has a diagonal entry");
+  Vec value(A.valuePtr(), A.valuePtr() + A.nonZeros());
+  levels_.push_back(std::move(top));
+  // Each level pairs twice (aggregates of up to four rows) until the coarsest is small or
+  // coarsening stalls.
+  while (levels_.back().rows > kCoarsestRows) {
+    Level& fine = levels_.back();
+    std::vector<Index> first_pair, second_pair;
+    const Index pairs = pair_rows(fine, value, first_pair);
+    const Level mid = coarse_level(fine, first_pair, pairs);
+    const Vec mid_value = coarse_values(fine, value, mid.column.size());
+    const Index quads = pair_rows(mid, mid_value, second_pair);
+    std::vector<Index> aggregate(fine.rows);
+    for (Index i = 0; i < fine.rows; ++i) aggregate[i] = second_pair[first_pair[i]];
+    if (quads * 3 > fine.rows * 2) {  // less than 1.5x coarser: stop here
+      fine.aggregate.clear();
+      fine.coarse_slot.clear();
+      break;
+    }
+    Level coarse = coarse_level(fine, aggregate, quads);
+    value = coarse_values(fine, value, coarse.column.size());
+    levels_.push_back(std::move(coarse));
+  }
+}
+
+MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b, Mat2& x,
+                                            double tolerance, int max_iterations) const {
+  const Level& top = levels_.front();
+  SKINSLIDE_CHECK(A.rows() == top.rows && A.nonZeros() == static_cast<Index>(top.column.size()),
+                  "the matrix has the hierarchy's pattern");
+  Numeric N;
+  N.levels = &levels_;
+  N.value.resize(levels_.size());
+  N.value[0].assign(A.valuePtr(), A.valuePtr() + A.nonZeros());
+  for (size_t l = 0; l + 1 < levels_.size(); ++l)
+    N.value[l + 1] = coarse_values(levels_[l], N.value[l], levels_[l + 1].column.size());
+  {
+    const Level& C = levels_.back();
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(C.rows, C.rows);
+    for (Index i = 0; i < C.rows; ++i)
+      for (Index k = C.start[i]; k < C.start[i + 1]; ++k) dense(i, C.column[k]) = N.value.back()[k];
+    N.coarsest.compute(dense);
+    // A singular system (a part with no fixed node) or non-finite values: not solvable here.
+    if (N.coarsest.info() != Eigen::Success) return {};
+  }
+  N.inverse_diagonal.resize(levels_.size());
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    N.inverse_diagonal[l].resize(levels_[l].rows);
+    for (Index i = 0; i < levels_[l].rows; ++i)
+      N.inverse_diagonal[l][i] = 1.0 / N.value[l][levels_[l].diagonal[i]];
+  }
+  N.work.resize(levels_.size());
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    const size_t n = 2 * static_cast<size_t>(levels_[l].rows);
+    Numeric::Work& w = N.work[l];
+    if (l + 1 < levels_.size()) {
+      w.rc.resize(2 * static_cast<size_t>(levels_[l + 1].rows));
+      w.zc.resize(w.rc.size());
+    }
+    if (l > 0) {
+      w.c1.resize(n), w.v1.resize(n), w.c2.resize(n), w.v2.resize(n);
+    }
+  }
+  const size_t n = 2 * static_cast<size_t>(top.rows);
+  Vec xv(n), bv(n), r(n), z(n), p(n), q(n);
+  for (Index i = 0; i < top.rows; ++i) {
+    xv[2 * i] = x(i, 0);
+    xv[2 * i + 1] = x(i, 1);
+    bv[2 * i] = b(i, 0);
+    bv[2 * i + 1] = b(i, 1);
+  }
+  multiply(top, N.value[0], xv, r);
+  for (size_t i = 0; i < n; ++i) r[i] = bv[i] - r[i];
+  double goal[2], pq_previous[2] = {0, 0};
+  bool active[2];
+  MultigridResult out;
+  for (int c = 0; c < 2; ++c) goal[c] = tolerance * std::sqrt(dot(bv, bv, c));
+  for (int it = 0;; ++it) {
+    double worst = 0;
+    for (int c = 0; c < 2; ++c) {
+      const double rn = std::sqrt(dot(r, r, c));
+      active[c] = rn > goal[c];
+      const double bn = std::sqrt(dot(bv, bv, c));
+      worst = std::max(worst, bn > 0 ? rn / bn : rn);
+    }
+    out.residual = worst;
+    out.iterations = it;
+    if (!std::isfinite(worst)) break;
+    if (!active[0] && !active[1]) {
+      out.converged = true;
+      break;
+    }
+    if (it == max_iterations) break;
+    kcycle(N, 0, r, z);
+    for (int c = 0; c < 2; ++c) {
+      if (!active[c]) continue;
+      const double beta = it > 0 && pq_previous[c] > 0 ? -dot(z, q, c) / pq_previous[c] : 0.0;
+      for (size_t i = c; i < n; i += 2) p[i] = z[i] + beta * p[i];
+    }
+    multiply(top, N.value[0], p, q);
+    for (int c = 0; c < 2; ++c) {
+      if (!active[c]) continue;
+      const double pq = dot(p, q, c);
+      const double alpha = pq > 0 ? dot(p, r, c) / pq : 0.0;
+      pq_previous[c] = pq;
+      for (size_t i = c; i < n; i += 2) {
+        xv[i] += alpha * p[i];
+        r[i] -= alpha * q[i];
+      }
+    }
+  }
+  for (Index i = 0; i < top.rows; ++i) x.row(i) << xv[2 * i], xv[2 * i + 1];
+  return out;
+}
+
+}  // namespace skinslide

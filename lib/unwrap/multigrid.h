@@ -1,0 +1,50 @@
+// An aggregation multigrid for the frame nets' systems: conjugate gradients preconditioned by a
+// K-cycle over pairwise aggregates (Notay 2010, "An aggregation-based algebraic multigrid method";
+// Notay & Vassilevski 2008, "Recursive Krylov-based multigrid cycles"). The aggregates and every
+// level's sparsity pattern are built once from one matrix; a solve only sums a new matrix's values
+// into the coarse levels, so frames whose densities differ share one hierarchy.
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+
+namespace skinslide {
+
+struct MultigridResult {
+  int iterations = 0;   ///< outer CG iterations, the larger of the two columns
+  double residual = 0;  ///< final |r|/|b|, the larger of the two columns
+  bool converged = false;
+};
+
+class AggregationMultigrid {
+ public:
+  /// \param A symmetric, both triangles stored, positive definite with non-positive off-diagonal
+  ///        entries (a bar net's free system); its values pick the aggregates
+  explicit AggregationMultigrid(const SparseMatrix& A);
+
+  /// Solves A x = b for two right-hand sides at once (x and y of a net), starting from x.
+  /// A has the pattern the hierarchy was built from; its values may differ.
+  /// Stops when |r| <= tolerance |b| in each column, or after max_iterations.
+  /// Deterministic, const and thread-safe: all per-solve values live in the call.
+  MultigridResult solve(const SparseMatrix& A, const Eigen::Matrix<double, Eigen::Dynamic, 2>& b,
+                        Eigen::Matrix<double, Eigen::Dynamic, 2>& x, double tolerance,
+                        int max_iterations) const;
+
+  /// Per level: rows and sparsity pattern (compressed rows, columns sorted, the diagonal's
+  /// position), and for all but the coarsest the row of the next level each row is summed into
+  /// and where each nonzero lands in the next level's values.
+  struct Level {
+    Index rows = 0;
+    std::vector<Index> start, column, diagonal;
+    std::vector<Index> aggregate;    ///< #rows: row of the next level
+    std::vector<Index> coarse_slot;  ///< #nonzeros: nonzero of the next level
+  };
+  int levels() const { return static_cast<int>(levels_.size()); }
+  const Level& level(int l) const { return levels_[l]; }
+
+ private:
+  std::vector<Level> levels_;
+};
+
+}  // namespace skinslide
