@@ -57,7 +57,7 @@ struct CliOptions {
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
-  std::string frame_solver = "cholesky";
+  std::string frame_solver = "auto";
   double cg_tolerance = 1e-12;
   int cg_max_iterations = 2000;
   std::string locate = "walk";
@@ -342,17 +342,42 @@ std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& c
   return frame_report(setup, o, result, label, out_path);
 }
 
+std::string solver_label(FrameNetMethod method, int iterations) {
+  switch (method) {
+    case FrameNetMethod::Cholesky:
+      return "Cholesky";
+    case FrameNetMethod::Cg:
+      return "CG " + std::to_string(iterations) + " it";
+    case FrameNetMethod::Multigrid:
+      return "multigrid " + std::to_string(iterations) + " it";
+  }
+  return "?";
+}
+
+// The frame's solvers, each once, in patch order; an iterative one with its most iterations.
+std::string solvers_used(const BindSetup& setup, const FrameResult& result) {
+  std::vector<std::pair<FrameNetMethod, int>> used;
+  for (size_t p = 0; p < result.patches.size(); ++p) {
+    if (setup.patches[p].skipped) continue;
+    const FrameNetMethod m = setup.patches[p].solver->method();
+    auto it = std::find_if(used.begin(), used.end(), [&](const auto& u) { return u.first == m; });
+    if (it == used.end()) it = used.insert(used.end(), {m, 0});
+    it->second = std::max(it->second, result.patches[p].cg_iterations);
+  }
+  if (used.empty()) return "no frame net";
+  std::string text;
+  for (const auto& [method, iterations] : used)
+    text += (text.empty() ? "" : " + ") + solver_label(method, iterations);
+  return text;
+}
+
 std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
                                       const FrameResult& result, const std::string& frame_path,
                                       const std::string& out_path) {
   const FrameSummary s = summarise(result);
   std::vector<std::string> lines;
-  const bool cholesky = setup.options.frame_solver == FrameSolver::Cholesky;
-  const auto solver = [&](int iterations) {
-    return cholesky ? std::string("Cholesky") : "CG " + std::to_string(iterations) + " it";
-  };
   lines.push_back("skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
-                  " patches, " + solver(s.cg_iterations) + ", max slide " + fmt(s.max_slide) +
+                  " patches, " + solvers_used(setup, result) + ", max slide " + fmt(s.max_slide) +
                   ", " + std::to_string(s.fallbacks) + " fallbacks -> " + out_path);
   if (o.verbose)
     for (size_t p = 0; p < result.patches.size(); ++p) {
@@ -360,8 +385,10 @@ std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& 
       lines.push_back("  patch " + std::to_string(p) + ": " +
                       (setup.patches[p].skipped
                            ? std::string("skipped (all vertices on loops)")
-                           : solver(r.cg_iterations) +
-                                 (cholesky ? "" : ", residual " + fmt(r.cg_residual)) +
+                           : solver_label(setup.patches[p].solver->method(), r.cg_iterations) +
+                                 (setup.patches[p].solver->method() == FrameNetMethod::Cholesky
+                                      ? ""
+                                      : ", residual " + fmt(r.cg_residual)) +
                                  (r.direct_solve ? " (solved directly)" : "") + ", located " +
                                  std::to_string(r.located_in_image) + " + " +
                                  std::to_string(r.located_fallback) + " fallback, net flips " +
@@ -632,10 +659,13 @@ int main(int argc, char** argv) {
       ->group(method);
   app.add_option(
          "--frame-solver", o.frame_solver,
-         "Frame nets: cholesky (sparse, analysis reused by every frame) or cg (warm-started "
-         "conjugate gradient; the same nets within --cg-tolerance)")
+         "Frame nets: cholesky (sparse, analysis reused by every frame), multigrid (conjugate "
+         "gradient preconditioned by an aggregation multigrid, warm-started; faster from about "
+         "200k patch vertices), auto (multigrid for patches of 200k free vertices or more, "
+         "else cholesky) or cg (Jacobi-preconditioned; slow, kept for comparison). The nets "
+         "agree within --cg-tolerance")
       ->capture_default_str()
-      ->check(CLI::IsMember({"cholesky", "cg"}))
+      ->check(CLI::IsMember({"auto", "cholesky", "multigrid", "cg"}))
       ->group(method);
   app.add_option("--cg-tolerance", o.cg_tolerance, "Frame net CG stops at |r| <= tol |b|")
       ->capture_default_str()

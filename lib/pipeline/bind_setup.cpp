@@ -9,6 +9,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "pipeline/slide_frame.h"
 #include "unwrap/bar_net.h"
 #include "unwrap/force_density.h"
 #include "unwrap/square_boundary.h"
@@ -143,15 +144,17 @@ std::vector<PatchChoice> patch_choices(const std::vector<PatchComponent>& comps,
 
 // The bind net: the outer loop on the square, everything else in equilibrium. With Holes::Fill
 // each hole gets a virtual free node joined to its loop vertices, with the loop's mean q, so the
-// hole keeps its size instead of collapsing towards the free loop.
+// hole keeps its size instead of collapsing towards the free loop. Solved as the frames will be:
+// by multigrid, or by Cholesky, whose ordering then serves the frames too.
 Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const Positions2& outer_2d,
-                    Holes holes, std::vector<Index>& node_order) {
+                    const SlideOptions& options, FrameNetMethod method,
+                    std::vector<Index>& node_order) {
   const Index n = static_cast<Index>(patch.vertices.size());
   BarNet net;
   net.node_count = n;
   net.bars = patch.bars;
   std::vector<double> q_all = q;
-  if (holes == Holes::Fill) {
+  if (options.holes == Holes::Fill) {
     for (size_t l = 0; l < patch.loops.size(); ++l) {
       if (static_cast<Index>(l) == patch.outer_loop) continue;
       const auto& loop = patch.loops[l];
@@ -173,7 +176,11 @@ Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const P
     net.fixed[outer[k]] = 1;
     start[outer[k]] = outer_2d[k];
   }
-  Positions2 solved = solve_bar_net(net, q_all, start, &node_order);
+  Positions2 solved =
+      method == FrameNetMethod::Multigrid
+          ? solve_bar_net_multigrid(net, q_all, start, options.cg_tolerance,
+                                    options.cg_max_iterations)
+          : solve_bar_net(net, q_all, start, &node_order);
   solved.resize(n);
   return solved;
 }
@@ -293,9 +300,11 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   patch.bind_lengths = bar_lengths(points, patch.bars);
   const std::vector<double> q =
       force_densities(patch.bind_lengths, options.density, options.q_floor);
+  const FrameNetMethod method = frame_net_method(
+      options.frame_solver, static_cast<std::ptrdiff_t>(patch.free_vertices.size()));
   // The frame nets' free nodes are among the bind net's: its fill-reducing order serves them too.
   std::vector<Index> node_order;
-  patch.bind_net = bind_net(patch, q, square.positions, options.holes, node_order);
+  patch.bind_net = bind_net(patch, q, square.positions, options, method, node_order);
   patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
 
   // Frame nets: the same bars, every loop vertex fixed at its bind-net position.
@@ -304,7 +313,7 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   frame.bars = patch.bars;
   frame.fixed = std::move(fixed);
   patch.solver =
-      std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net, node_order);
+      std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net, method, node_order);
   return patch;
 }
 

@@ -18,9 +18,11 @@ Holes parse_holes(const std::string& name) {
 }
 
 FrameSolver parse_frame_solver(const std::string& name) {
+  if (name == "auto") return FrameSolver::Auto;
   if (name == "cholesky") return FrameSolver::Cholesky;
   if (name == "cg") return FrameSolver::Cg;
-  throw Error(ErrorKind::Usage, "unknown frame solver '" + name + "' (cholesky, cg)");
+  if (name == "multigrid") return FrameSolver::Multigrid;
+  throw Error(ErrorKind::Usage, "unknown frame solver '" + name + "' (auto, cholesky, cg, multigrid)");
 }
 
 Locate parse_locate(const std::string& name) {
@@ -43,7 +45,19 @@ std::string to_string(Density d) {
 
 std::string to_string(Holes h) { return h == Holes::Free ? "free" : "fill"; }
 
-std::string to_string(FrameSolver s) { return s == FrameSolver::Cg ? "cg" : "cholesky"; }
+std::string to_string(FrameSolver s) {
+  switch (s) {
+    case FrameSolver::Auto:
+      return "auto";
+    case FrameSolver::Cholesky:
+      return "cholesky";
+    case FrameSolver::Cg:
+      return "cg";
+    case FrameSolver::Multigrid:
+      return "multigrid";
+  }
+  return "?";
+}
 
 }  // namespace skinslide
 

@@ -6,6 +6,7 @@
 
 #include "core/version.h"
 #include "io/number_format.h"
+#include "unwrap/bar_net.h"
 
 namespace skinslide {
 namespace {
@@ -80,6 +81,20 @@ std::string inline_array(const std::vector<std::string>& items) {
   return out + "]";
 }
 
+// What --frame-solver auto chose for the patch, in the option's words.
+std::string solver_name(const PatchNet& p) {
+  if (p.skipped) return "none";
+  switch (p.solver->method()) {
+    case FrameNetMethod::Cholesky:
+      return "cholesky";
+    case FrameNetMethod::Cg:
+      return "cg";
+    case FrameNetMethod::Multigrid:
+      return "multigrid";
+  }
+  return "?";
+}
+
 }  // namespace
 
 std::string report_json(const BindSetup& setup, const RunReport& run) {
@@ -127,6 +142,7 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
                           .add("corners_chosen", boolean(p.corners_chosen))
                           .add("skipped", boolean(p.skipped))
                           .add("bind_net_flips", number(static_cast<long long>(p.bind_net_flips)))
+                          .add("frame_solver", quoted(solver_name(p)))
                           .str());
   }
   root.add("patches", array(patches, 2));

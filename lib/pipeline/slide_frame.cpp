@@ -117,10 +117,22 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
 
 }  // namespace
 
+FrameNetMethod frame_net_method(FrameSolver solver, std::ptrdiff_t free_nodes) {
+  switch (solver) {
+    case FrameSolver::Cholesky:
+      return FrameNetMethod::Cholesky;
+    case FrameSolver::Cg:
+      return FrameNetMethod::Cg;
+    case FrameSolver::Multigrid:
+      return FrameNetMethod::Multigrid;
+    case FrameSolver::Auto:
+      break;
+  }
+  return free_nodes >= kMultigridFreeNodes ? FrameNetMethod::Multigrid : FrameNetMethod::Cholesky;
+}
+
 FrameNetOptions frame_net_options(const SlideOptions& options) {
   FrameNetOptions o;
-  o.method =
-      options.frame_solver == FrameSolver::Cg ? FrameNetMethod::Cg : FrameNetMethod::Cholesky;
   o.cg_tolerance = options.cg_tolerance;
   o.cg_max_iterations = options.cg_max_iterations;
   return o;

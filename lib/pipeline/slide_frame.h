@@ -38,8 +38,12 @@ struct FrameResult {
   std::vector<PatchFrameReport> patches;  ///< parallel to BindSetup::patches
 };
 
-/// The frame-net solver settings of `options` (method, CG tolerance and iteration cap).
+/// The frame-net solver settings of `options` (CG tolerance and iteration cap).
 FrameNetOptions frame_net_options(const SlideOptions& options);
+
+/// The method a patch's nets are solved by: the one named, or for Auto, Multigrid from
+/// kMultigridFreeNodes free nodes on and Cholesky below.
+FrameNetMethod frame_net_method(FrameSolver solver, std::ptrdiff_t free_nodes);
 
 /// Slides one frame. `frame` holds the deformed positions of every mesh vertex (#V).
 /// A free vertex v of weight w = setup.weight[v] (1 when empty) is written at

@@ -248,9 +248,27 @@ Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q,
   return scatter(net, s.free_id, x, positions);
 }
 
-FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions,
+Positions2 solve_bar_net_multigrid(const BarNet& net, const std::vector<double>& q,
+                                   const Positions2& positions, double tolerance,
+                                   int max_iterations) {
+  SKINSLIDE_CHECK(q.size() == net.bars.size(), "one q per bar");
+  SKINSLIDE_CHECK(positions.size() == static_cast<size_t>(net.node_count), "one position per node");
+  const FreeSystem s = free_system(net);
+  const Index rows = static_cast<Index>(s.free_nodes.size());
+  if (rows == 0) return positions;
+  SparseMatrix K = free_matrix(net, s.free_id, q, rows);
+  K.makeCompressed();
+  const Mat2 b = fixed_pull(net, s.free_id, q, positions, rows);
+  Mat2 x(rows, 2);
+  for (Index r = 0; r < rows; ++r) x.row(r) = positions[s.free_nodes[r]].transpose();
+  const AggregationMultigrid multigrid(K);
+  if (!multigrid.solve(K, b, x, tolerance, max_iterations).converged) x = direct_solve(K, b);
+  return scatter(net, s.free_id, x, positions);
+}
+
+FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
                                const std::vector<Index>& node_order)
-    : net_(std::move(net)), start_(std::move(positions)) {
+    : net_(std::move(net)), method_(method), start_(std::move(positions)) {
   SKINSLIDE_CHECK(start_.size() == static_cast<size_t>(net_.node_count), "one position per node");
   FreeSystem s = free_system(net_);
   free_id_ = std::move(s.free_id);
@@ -258,7 +276,9 @@ FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions,
   const Index rows = static_cast<Index>(free_nodes_.size());
   pattern_ = free_matrix(net_, free_id_, std::vector<double>(net_.bars.size(), 1.0), rows);
   pattern_.makeCompressed();
-  if (rows > 0) {
+  if (rows > 0 && method_ == FrameNetMethod::Multigrid)
+    multigrid_ = std::make_shared<const AggregationMultigrid>(pattern_);
+  if (rows > 0 && method_ == FrameNetMethod::Cholesky) {
     // A given order is restricted to this net's free nodes: eliminating a principal submatrix in
     // the order of the whole creates no more fill than the whole had.
     std::vector<Index> perm;
@@ -317,17 +337,30 @@ FrameNetSolution FrameNetSolver::solve(const std::vector<double>& q,
   const Mat2 b = fixed_pull(net_, free_id_, q, start_, rows);
   Mat2 x0(rows, 2);
   for (Index r = 0; r < rows; ++r) x0.row(r) = start_[free_nodes_[r]].transpose();
-  if (options.method == FrameNetMethod::Cholesky) {
-    // As CG would, keep the warm start when it already meets the tolerance: a frame whose net
-    // is the bind net (an undeformed frame) then slides nothing, to the last bit.
-    const Mat2 r0 = b - K.selfadjointView<Eigen::Lower>() * x0;
-    if (r0.col(0).norm() <= options.cg_tolerance * b.col(0).norm() &&
-        r0.col(1).norm() <= options.cg_tolerance * b.col(1).norm()) {
-      out.positions = scatter(net_, free_id_, x0, start_);
-      return out;
-    }
+  // Keep the warm start when it already meets the tolerance: a frame whose net is the bind net
+  // (an undeformed frame) then slides nothing, to the last bit, whatever the method.
+  const Mat2 r0 = b - K.selfadjointView<Eigen::Lower>() * x0;
+  if (r0.col(0).norm() <= options.cg_tolerance * b.col(0).norm() &&
+      r0.col(1).norm() <= options.cg_tolerance * b.col(1).norm()) {
+    out.positions = scatter(net_, free_id_, x0, start_);
+    return out;
+  }
+  if (method_ == FrameNetMethod::Cholesky) {
     Cholmod c;
     const Mat2 x = factor_and_solve(K, b, symbolic_->L, c);
+    out.positions = scatter(net_, free_id_, x, start_);
+    return out;
+  }
+  if (method_ == FrameNetMethod::Multigrid) {
+    Mat2 x = x0;
+    const MultigridResult mg =
+        multigrid_->solve(K, b, x, options.cg_tolerance, options.cg_max_iterations);
+    out.iterations = mg.iterations;
+    out.residual = mg.residual;
+    if (!mg.converged) {
+      x = direct_solve(K, b);
+      out.direct = true;
+    }
     out.positions = scatter(net_, free_id_, x, start_);
     return out;
   }

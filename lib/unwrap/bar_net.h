@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "unwrap/multigrid.h"
 
 namespace skinslide {
 
@@ -29,53 +30,71 @@ struct BarNet {
 Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q,
                          const Positions2& positions, std::vector<Index>* node_order = nullptr);
 
-/// How FrameNetSolver solves a frame.
+/// The same equilibrium by CG preconditioned by an aggregation multigrid, from the free nodes'
+/// given positions, to |r| <= tolerance |b| in x and in y: no ordering and no factor, so
+/// memory and time grow as the net, where a factorisation grows as n^1.5. Past max_iterations
+/// the net is solved directly.
+/// \throw Error(Numeric) as solve_bar_net.
+Positions2 solve_bar_net_multigrid(const BarNet& net, const std::vector<double>& q,
+                                   const Positions2& positions, double tolerance,
+                                   int max_iterations);
+
+/// How FrameNetSolver solves a frame. Every method keeps the warm start when its residual
+/// already meets cg_tolerance.
 enum class FrameNetMethod {
-  Cholesky,  ///< sparse Cholesky (CHOLMOD LDL^T), ordering and symbolic analysis done once;
-             ///< the warm start is kept when its residual already meets cg_tolerance
-  Cg,        ///< Jacobi-preconditioned CG warm-started at the bind net, x and y separately
+  Cholesky,   ///< sparse Cholesky (CHOLMOD LDL^T), ordering and symbolic analysis done once
+  Cg,         ///< Jacobi-preconditioned CG warm-started at the bind net, x and y separately
+  Multigrid,  ///< CG preconditioned by an aggregation multigrid (unwrap/multigrid.h) built
+              ///< once, warm-started at the bind net, x and y together
 };
 
 struct FrameNetOptions {
-  FrameNetMethod method = FrameNetMethod::Cholesky;
   double cg_tolerance = 1e-12;   ///< CG stops at |r| <= cg_tolerance * |b| (each of x and y)
   int cg_max_iterations = 2000;  ///< past it CG gives way to a direct solve
 };
 
 struct FrameNetSolution {
   Positions2 positions;  ///< #nodes
-  int iterations = 0;    ///< CG iterations, the larger of x and y (0 for Cholesky)
+  int iterations = 0;    ///< CG iterations, the larger of x and y (0 for Cholesky and when the
+                         ///< warm start is kept)
   double residual = 0;   ///< CG's final |r|/|b|, the larger of x and y (0 for Cholesky)
   bool direct = false;   ///< CG did not converge: solved by SimplicialLDLT instead
 };
 
 /// Solves the same net (same bars, same fixed nodes at the same positions) for many q vectors
 /// (the paper's frame unwrap, section III.E). Built once: the free system's sparsity pattern, the
-/// slot of each bar in it, a fill-reducing ordering (CHOLMOD's nested dissection) and the symbolic
-/// Cholesky factor. Per solve only values change. `solve` is const and thread-safe: each call
+/// slot of each bar in it, and what the method needs: a fill-reducing ordering (CHOLMOD's nested
+/// dissection) and the symbolic Cholesky factor, or the multigrid's levels. Per solve only
+/// values change. `solve` is const and thread-safe: each call
 /// owns its numeric factor, so frames can be solved in parallel with identical results.
 class FrameNetSolver {
  public:
   /// \param positions #nodes: fixed nodes at their positions, free nodes at the warm start
-  /// \param node_order a fill-reducing order of (a superset of) the free nodes, e.g. from
-  ///        solve_bar_net on the bind net; other nodes in it are skipped. Empty: a new one.
+  /// \param node_order for Cholesky, a fill-reducing order of (a superset of) the free nodes,
+  ///        e.g. from solve_bar_net on the bind net; other nodes in it are skipped. Empty: a new
+  ///        one.
   /// \throw Error(Numeric) when the symbolic analysis fails.
-  FrameNetSolver(BarNet net, Positions2 positions, const std::vector<Index>& node_order = {});
+  FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
+                 const std::vector<Index>& node_order = {});
   /// \param q one force density per bar (> 0)
   /// \return #nodes positions: fixed nodes as given, free nodes in equilibrium
   /// \throw Error(Numeric) when the system is singular or the result is not finite.
   FrameNetSolution solve(const std::vector<double>& q, const FrameNetOptions& options) const;
   const BarNet& net() const { return net_; }
+  FrameNetMethod method() const { return method_; }
+  Index free_node_count() const { return static_cast<Index>(free_nodes_.size()); }
 
  private:
   BarNet net_;
+  FrameNetMethod method_;
   Positions2 start_;                        // #nodes
   std::vector<Index> free_id_;              // node -> row of the free system, -1 if fixed
   std::vector<Index> free_nodes_;           // row -> node
   SparseMatrix pattern_;                    // K_ff's pattern (values ignored)
   std::vector<std::array<Index, 4>> slot_;  // per bar: value slots (aa, bb, ab, ba), -1 if none
   struct Symbolic;
-  std::shared_ptr<const Symbolic> symbolic_;  // K_ff's symbolic factor (CHOLMOD)
+  std::shared_ptr<const Symbolic> symbolic_;  // K_ff's symbolic factor (Cholesky)
+  std::shared_ptr<const AggregationMultigrid> multigrid_;  // its levels (multigrid)
 };
 
 /// How many triangles of a net do not keep the orientation of the majority.

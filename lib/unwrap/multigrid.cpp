@@ -1,6 +1,7 @@
 #include "unwrap/multigrid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <Eigen/Cholesky>
@@ -103,14 +104,20 @@ Vec coarse_values(const Level& fine, const Vec& value, size_t coarse_nonzeros) {
   return out;
 }
 
-double dot(const Vec& a, const Vec& b, int c) {
-  double s = 0;
-  for (size_t i = c; i < a.size(); i += 2) s += a[i] * b[i];
+// Both columns' dot products in one pass.
+using Two = std::array<double, 2>;
+Two dot(const Vec& a, const Vec& b) {
+  Two s{0, 0};
+  for (size_t i = 0; i < a.size(); i += 2) {
+    s[0] += a[i] * b[i];
+    s[1] += a[i + 1] * b[i + 1];
+  }
   return s;
 }
 
-// y = A x
-void multiply(const Level& L, const Vec& A, const Vec& x, Vec& y) {
+// y = A x; returns x.y per column, summed in the same pass.
+Two multiply(const Level& L, const Vec& A, const Vec& x, Vec& y) {
+  Two xy{0, 0};
   for (Index i = 0; i < L.rows; ++i) {
     double s0 = 0, s1 = 0;
     for (Index k = L.start[i]; k < L.start[i + 1]; ++k) {
@@ -120,7 +127,10 @@ void multiply(const Level& L, const Vec& A, const Vec& x, Vec& y) {
     }
     y[2 * i] = s0;
     y[2 * i + 1] = s1;
+    xy[0] += x[2 * i] * s0;
+    xy[1] += x[2 * i + 1] * s1;
   }
+  return xy;
 }
 
 void relax_row(const Level& L, const Vec& A, const Vec& inverse_diagonal, const Vec& b, Vec& x,
@@ -160,40 +170,46 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
   Numeric::Work& w = N.work[l];
   const size_t n = rc.size();
   kcycle(N, l, rc, w.c1);
-  multiply(C, A, w.c1, w.v1);
-  double rho1[2], alpha1[2], r2norm[2], rcnorm[2];
-  w.r2 = rc;
-  for (int c = 0; c < 2; ++c) {
-    rho1[c] = dot(w.c1, w.v1, c);
-    alpha1[c] = dot(w.c1, rc, c);
-    const double t = rho1[c] > 0 ? alpha1[c] / rho1[c] : 0.0;
-    for (size_t i = c; i < n; i += 2) w.r2[i] -= t * w.v1[i];
-    r2norm[c] = dot(w.r2, w.r2, c);
-    rcnorm[c] = dot(rc, rc, c);
+  const Two rho1 = multiply(C, A, w.c1, w.v1);
+  const Two alpha1 = dot(w.c1, rc);
+  Two t1{0, 0};
+  for (int c = 0; c < 2; ++c) t1[c] = rho1[c] > 0 ? alpha1[c] / rho1[c] : 0.0;
+  Two r2norm{0, 0}, rcnorm{0, 0};
+  w.r2.resize(n);
+  for (size_t i = 0; i < n; i += 2) {
+    w.r2[i] = rc[i] - t1[0] * w.v1[i];
+    w.r2[i + 1] = rc[i + 1] - t1[1] * w.v1[i + 1];
+    r2norm[0] += w.r2[i] * w.r2[i];
+    r2norm[1] += w.r2[i + 1] * w.r2[i + 1];
+    rcnorm[0] += rc[i] * rc[i];
+    rcnorm[1] += rc[i + 1] * rc[i + 1];
   }
-  const bool enough = r2norm[0] <= kInnerReduction * kInnerReduction * rcnorm[0] &&
-                      r2norm[1] <= kInnerReduction * kInnerReduction * rcnorm[1];
-  if (enough) {
-    for (int c = 0; c < 2; ++c) {
-      const double t = rho1[c] > 0 ? alpha1[c] / rho1[c] : 0.0;
-      for (size_t i = c; i < n; i += 2) zc[i] = t * w.c1[i];
+  const double enough = kInnerReduction * kInnerReduction;
+  if (r2norm[0] <= enough * rcnorm[0] && r2norm[1] <= enough * rcnorm[1]) {
+    for (size_t i = 0; i < n; i += 2) {
+      zc[i] = t1[0] * w.c1[i];
+      zc[i + 1] = t1[1] * w.c1[i + 1];
     }
     return;
   }
   kcycle(N, l, w.r2, w.c2);
-  multiply(C, A, w.c2, w.v2);
-  for (int c = 0; c < 2; ++c) {
-    if (!(rho1[c] > 0)) {
-      for (size_t i = c; i < n; i += 2) zc[i] = 0;
-      continue;
+  const Two beta = multiply(C, A, w.c2, w.v2);
+  Two gamma{0, 0}, alpha2{0, 0};
+  for (size_t i = 0; i < n; i += 2)
+    for (int c = 0; c < 2; ++c) {
+      gamma[c] += w.c2[i + c] * w.v1[i + c];
+      alpha2[c] += w.c2[i + c] * w.r2[i + c];
     }
-    const double gamma = dot(w.c2, w.v1, c), beta = dot(w.c2, w.v2, c),
-                 alpha2 = dot(w.c2, w.r2, c);
-    const double rho2 = beta - gamma * gamma / rho1[c];
-    const double t1 = rho2 > 0 ? alpha1[c] / rho1[c] - gamma * alpha2 / (rho1[c] * rho2)
-                               : alpha1[c] / rho1[c];
-    const double t2 = rho2 > 0 ? alpha2 / rho2 : 0.0;
-    for (size_t i = c; i < n; i += 2) zc[i] = t1 * w.c1[i] + t2 * w.c2[i];
+  Two f1{0, 0}, f2{0, 0};
+  for (int c = 0; c < 2; ++c) {
+    if (!(rho1[c] > 0)) continue;
+    const double rho2 = beta[c] - gamma[c] * gamma[c] / rho1[c];
+    f1[c] = rho2 > 0 ? t1[c] - gamma[c] * alpha2[c] / (rho1[c] * rho2) : t1[c];
+    f2[c] = rho2 > 0 ? alpha2[c] / rho2 : 0.0;
+  }
+  for (size_t i = 0; i < n; i += 2) {
+    zc[i] = f1[0] * w.c1[i] + f2[0] * w.c2[i];
+    zc[i + 1] = f1[1] * w.c1[i + 1] + f2[1] * w.c2[i + 1];
   }
 }
 
@@ -334,17 +350,15 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   }
   multiply(top, N.value[0], xv, r);
   for (size_t i = 0; i < n; ++i) r[i] = bv[i] - r[i];
-  double goal[2], pq_previous[2] = {0, 0};
-  bool active[2];
+  const Two bb = dot(bv, bv);
+  Two rr = dot(r, r), pq_previous{0, 0};
   MultigridResult out;
-  for (int c = 0; c < 2; ++c) goal[c] = tolerance * std::sqrt(dot(bv, bv, c));
   for (int it = 0;; ++it) {
+    bool active[2];
     double worst = 0;
     for (int c = 0; c < 2; ++c) {
-      const double rn = std::sqrt(dot(r, r, c));
-      active[c] = rn > goal[c];
-      const double bn = std::sqrt(dot(bv, bv, c));
-      worst = std::max(worst, bn > 0 ? rn / bn : rn);
+      active[c] = std::sqrt(rr[c]) > tolerance * std::sqrt(bb[c]);
+      worst = std::max(worst, bb[c] > 0 ? std::sqrt(rr[c] / bb[c]) : std::sqrt(rr[c]));
     }
     out.residual = worst;
     out.iterations = it;
@@ -355,22 +369,27 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
     }
     if (it == max_iterations) break;
     kcycle(N, 0, r, z);
-    for (int c = 0; c < 2; ++c) {
-      if (!active[c]) continue;
-      const double beta = it > 0 && pq_previous[c] > 0 ? -dot(z, q, c) / pq_previous[c] : 0.0;
-      for (size_t i = c; i < n; i += 2) p[i] = z[i] + beta * p[i];
+    // Flexible CG: p is made A-orthogonal to the previous p (the K-cycle is not a fixed linear
+    // operator). A converged column keeps its x and r.
+    const Two zq = it > 0 ? dot(z, q) : Two{0, 0};
+    Two beta{0, 0};
+    for (int c = 0; c < 2; ++c) beta[c] = pq_previous[c] > 0 ? -zq[c] / pq_previous[c] : 0.0;
+    for (size_t i = 0; i < n; i += 2) {
+      p[i] = z[i] + beta[0] * p[i];
+      p[i + 1] = z[i + 1] + beta[1] * p[i + 1];
     }
-    multiply(top, N.value[0], p, q);
-    for (int c = 0; c < 2; ++c) {
-      if (!active[c]) continue;
-      const double pq = dot(p, q, c);
-      const double alpha = pq > 0 ? dot(p, r, c) / pq : 0.0;
-      pq_previous[c] = pq;
-      for (size_t i = c; i < n; i += 2) {
-        xv[i] += alpha * p[i];
-        r[i] -= alpha * q[i];
+    const Two pq = multiply(top, N.value[0], p, q);
+    const Two pr = dot(p, r);
+    Two alpha{0, 0};
+    for (int c = 0; c < 2; ++c) alpha[c] = active[c] && pq[c] > 0 ? pr[c] / pq[c] : 0.0;
+    pq_previous = pq;
+    rr = {0, 0};
+    for (size_t i = 0; i < n; i += 2)
+      for (int c = 0; c < 2; ++c) {
+        xv[i + c] += alpha[c] * p[i + c];
+        r[i + c] -= alpha[c] * q[i + c];
+        rr[c] += r[i + c] * r[i + c];
       }
-    }
   }
   for (Index i = 0; i < top.rows; ++i) x.row(i) << xv[2 * i], xv[2 * i + 1];
   return out;

@@ -37,10 +37,11 @@ cp data/face/bind.obj "$tmp/identity.obj"
 check "an identity frame is written unchanged" cmp data/face/bind.obj "$tmp/identity/identity.obj"
 
 # --no-slide (the I/O floor): every frame written byte for byte; --frame-solver cg and
-# --locate image: the same results.
+# multigrid, and --locate image: the same results.
 "$bin" -q --no-slide --patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/noslide"
 check "--no-slide writes every frame unchanged" diff -r data/elbow/frames "$tmp/noslide"
 "$bin" -q --frame-solver cg --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.cg"
+"$bin" -q --frame-solver multigrid --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.mg"
 "$bin" -q --locate image --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.image"
 for out in "$tmp"/face.image/*.obj; do
   check "--locate image: $(basename "$out") matches its golden file" \
@@ -48,6 +49,11 @@ for out in "$tmp"/face.image/*.obj; do
 done
 for out in "$tmp"/face.cg/*.obj; do
   check "--frame-solver cg: $(basename "$out") matches its golden file" \
+    /usr/bin/python3 "$here/compare_obj.py" "$here/golden/face/$(basename "$out")" "$out"
+done
+
+for out in "$tmp"/face.mg/*.obj; do
+  check "--frame-solver multigrid: $(basename "$out") matches its golden file" \
     /usr/bin/python3 "$here/compare_obj.py" "$here/golden/face/$(basename "$out")" "$out"
 done
 

@@ -45,7 +45,7 @@ TEST(BarNet, TwoBarsBetweenTheSameFreeNodesActAsOneWithTheSumOfTheirQ) {
   const Positions2 x = solve_bar_net(doubled, {1, 0.5, 1.5, 1}, start);
   EXPECT_NEAR(x[1].x(), 1.2, 1e-14);  // the chain above: q = 1, 2, 1
   EXPECT_NEAR(x[2].x(), 1.8, 1e-14);
-  const FrameNetSolver solver(doubled, start);
+  const FrameNetSolver solver(doubled, start, FrameNetMethod::Cholesky);
   const FrameNetSolution s = solver.solve({1, 0.5, 1.5, 1}, FrameNetOptions{});
   EXPECT_NEAR(s.positions[1].x(), 1.2, 1e-14);
   EXPECT_NEAR(s.positions[2].x(), 1.8, 1e-14);
@@ -121,14 +121,15 @@ TEST(BarNet, DirectAndWarmStartedCgReachEquilibriumOnRandomNets) {
     const Positions2 direct = solve_bar_net(g.net, q, g.start);
     EXPECT_LT(net_force(g.net, q, direct), 1e-12);
 
-    const FrameNetSolver solver(g.net, direct);  // warm start at the exact answer: 0 iterations
-    const FrameNetSolution same = solver.solve(q, {FrameNetMethod::Cg, 1e-12, 1000});
+    // warm start at the exact answer: 0 iterations
+    const FrameNetSolver solver(g.net, direct, FrameNetMethod::Cg);
+    const FrameNetSolution same = solver.solve(q, {1e-12, 1000});
     EXPECT_EQ(same.iterations, 0);
     EXPECT_FALSE(same.direct);
 
     std::vector<double> q2 = q;
     for (double& v : q2) v *= 1.0 + 0.2 * (uq(rng) - 0.5);
-    const FrameNetSolution cg = solver.solve(q2, {FrameNetMethod::Cg, 1e-12, 1000});
+    const FrameNetSolution cg = solver.solve(q2, {1e-12, 1000});
     EXPECT_FALSE(cg.direct);
     EXPECT_GT(cg.iterations, 0);
     EXPECT_LE(cg.residual, 1e-12);
@@ -143,12 +144,15 @@ TEST(BarNet, CholeskyReachesEquilibriumOnRandomNetsWhateverTheWarmStart) {
   std::mt19937 rng{1};
   std::uniform_real_distribution<double> uq(1e-3, 1.0);
   const GridNet g = grid_net(40);
-  const FrameNetSolver solver(g.net, g.start);  // free nodes start at (0.5, 0.5): ignored
+  // free nodes start at (0.5, 0.5): ignored
+  const FrameNetSolver solver(g.net, g.start, FrameNetMethod::Cholesky);
+  const FrameNetSolver cg_solver(g.net, g.start, FrameNetMethod::Cg);
   for (int trial = 0; trial < 3; ++trial) {
     std::vector<double> q(g.net.bars.size());
     for (double& v : q) v = uq(rng);
-    const FrameNetSolution s = solver.solve(q, {FrameNetMethod::Cholesky, 1e-12, 1});
-    const FrameNetSolver at_answer(g.net, s.positions);  // a warm start that meets the tolerance
+    const FrameNetSolution s = solver.solve(q, {1e-12, 1});
+    // a warm start that meets the tolerance
+    const FrameNetSolver at_answer(g.net, s.positions, FrameNetMethod::Cholesky);
     EXPECT_EQ(at_answer.solve(q, {}).positions, s.positions);
     EXPECT_FALSE(s.direct);
     EXPECT_EQ(s.iterations, 0);
@@ -158,7 +162,7 @@ TEST(BarNet, CholeskyReachesEquilibriumOnRandomNetsWhateverTheWarmStart) {
         EXPECT_EQ(s.positions[v], g.start[v]);
       }
     }
-    const FrameNetSolution cg = solver.solve(q, {FrameNetMethod::Cg, 1e-13, 5000});
+    const FrameNetSolution cg = cg_solver.solve(q, {1e-13, 5000});
     for (Index v = 0; v < g.net.node_count; ++v)
       EXPECT_NEAR((cg.positions[v] - s.positions[v]).norm(), 0, 1e-10);
   }
@@ -169,7 +173,8 @@ TEST(BarNet, CholeskyOfANetWithAnUnanchoredPartIsANumericError) {
   net.node_count = 5;
   net.bars = {{0, 1}, {1, 2}, {3, 4}};  // nodes 3 and 4 reach no fixed node
   net.fixed = {1, 0, 1, 0, 0};
-  const FrameNetSolver solver(net, {{1, 0}, {0, 0}, {0, 1}, {0, 0}, {0, 0}});
+  const FrameNetSolver solver(net, {{1, 0}, {0, 0}, {0, 1}, {0, 0}, {0, 0}},
+                              FrameNetMethod::Cholesky);
   try {
     solver.solve({1, 1, 1}, {});
     FAIL();
@@ -182,10 +187,56 @@ TEST(BarNet, CholeskyOfANetWithAnUnanchoredPartIsANumericError) {
 TEST(BarNet, CgFallsBackToADirectSolveWhenItRunsOutOfIterations) {
   const GridNet g = grid_net(20);
   const std::vector<double> q(g.net.bars.size(), 1.0);
-  const FrameNetSolver solver(g.net, g.start);
-  const FrameNetSolution s = solver.solve(q, {FrameNetMethod::Cg, 1e-14, 2});
+  const FrameNetSolver solver(g.net, g.start, FrameNetMethod::Cg);
+  const FrameNetSolution s = solver.solve(q, {1e-14, 2});
   EXPECT_TRUE(s.direct);
   EXPECT_LT(net_force(g.net, q, s.positions), 1e-12);
+}
+
+TEST(BarNet, MultigridAgreesWithCholeskyOnRandomNetsAndKeepsAnExactWarmStart) {
+  std::mt19937 rng{2};
+  std::uniform_real_distribution<double> uq(1e-3, 1.0);
+  const GridNet g = grid_net(40);
+  const FrameNetSolver cholesky(g.net, g.start, FrameNetMethod::Cholesky);
+  const FrameNetSolver multigrid(g.net, g.start, FrameNetMethod::Multigrid);
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> q(g.net.bars.size());
+    for (double& v : q) v = uq(rng);
+    const FrameNetSolution exact = cholesky.solve(q, {});
+    const FrameNetSolution mg = multigrid.solve(q, {1e-12, 200});
+    EXPECT_FALSE(mg.direct);
+    EXPECT_GT(mg.iterations, 0);
+    EXPECT_LE(mg.residual, 1e-12);
+    EXPECT_LT(net_force(g.net, q, mg.positions), 1e-10);
+    for (Index v = 0; v < g.net.node_count; ++v)
+      EXPECT_NEAR((mg.positions[v] - exact.positions[v]).norm(), 0, 1e-10);
+    const FrameNetSolver at_answer(g.net, exact.positions, FrameNetMethod::Multigrid);
+    const FrameNetSolution kept = at_answer.solve(q, {});
+    EXPECT_EQ(kept.iterations, 0);
+    EXPECT_EQ(kept.positions, exact.positions);
+  }
+}
+
+TEST(BarNet, MultigridFallsBackToADirectSolveAndReportsASingularNet) {
+  const GridNet g = grid_net(20);
+  const std::vector<double> q(g.net.bars.size(), 1.0);
+  const FrameNetSolver solver(g.net, g.start, FrameNetMethod::Multigrid);
+  const FrameNetSolution s = solver.solve(q, {1e-14, 1});
+  EXPECT_TRUE(s.direct);
+  EXPECT_LT(net_force(g.net, q, s.positions), 1e-12);
+
+  BarNet net;
+  net.node_count = 5;
+  net.bars = {{0, 1}, {1, 2}, {3, 4}};  // nodes 3 and 4 reach no fixed node
+  net.fixed = {1, 0, 1, 0, 0};
+  const FrameNetSolver unanchored(net, {{1, 0}, {0, 0}, {0, 1}, {0, 0}, {0, 0}},
+                                  FrameNetMethod::Multigrid);
+  try {
+    unanchored.solve({1, 1, 1}, {});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Numeric);
+  }
 }
 
 TEST(BarNet, FlippedTrianglesCountsTheMinorityOrientation) {
