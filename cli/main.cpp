@@ -659,15 +659,18 @@ int main(int argc, char** argv) {
       ->group(method);
   app.add_option(
          "--frame-solver", o.frame_solver,
-         "Frame nets: cholesky (sparse, analysis reused by every frame), multigrid (conjugate "
-         "gradient preconditioned by an aggregation multigrid, warm-started; faster from about "
-         "200k patch vertices), auto (multigrid for patches of 200k free vertices or more, "
-         "else cholesky) or cg (Jacobi-preconditioned; slow, kept for comparison). The nets "
-         "agree within --cg-tolerance")
+         "How bind and frame nets are solved: cholesky (sparse factor, analysis reused by every "
+         "frame), multigrid (conjugate gradient preconditioned by an aggregation multigrid; no "
+         "ordering, so a shorter set-up, and faster frames on large patches), auto (multigrid "
+         "for patches of " + std::to_string(kMultigridFreeNodes) + " free vertices or more, "
+         "else cholesky) or cg (frame nets by Jacobi-preconditioned CG; slow, for comparison). "
+         "The nets agree within --cg-tolerance")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "cholesky", "multigrid", "cg"}))
       ->group(method);
-  app.add_option("--cg-tolerance", o.cg_tolerance, "Frame net CG stops at |r| <= tol |b|")
+  app.add_option("--cg-tolerance", o.cg_tolerance,
+                 "CG (multigrid, cg) stops at |r| <= tol |b|; every method keeps a frame's warm "
+                 "start that meets it")
       ->capture_default_str()
       ->check(CLI::Range(1e-16, 1e-2))
       ->group(method);

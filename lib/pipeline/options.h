@@ -31,9 +31,10 @@ enum class FrameSolver {
 };
 
 /// Where Auto switches to Multigrid: the frame system's free nodes. A factorisation grows as
-/// n^1.5 and a multigrid solve as n; on the benchmark's nets they cross between 100k (Cholesky
-/// 107 ms, multigrid 127 ms) and 490k (1.4 s, 0.9 s).
-constexpr int kMultigridFreeNodes = 200000;
+/// n^1.5 and a multigrid solve as n. On the benchmark's nets a frame costs the same near 90k
+/// free nodes (65k: Cholesky 66 ms, multigrid 72 ms; 93k: 104 and 102 ms; 465k: 1.4 and
+/// 0.9 s), and the multigrid's set-up, with no ordering, is half the Cholesky one.
+constexpr int kMultigridFreeNodes = 80000;
 
 /// How each free vertex's bind-net point is found in the frame net (the same rule for picking
 /// among the triangles that hold it; README "The method, exactly", 7).
