@@ -662,9 +662,11 @@ int main(int argc, char** argv) {
          "How bind and frame nets are solved: cholesky (sparse factor, analysis reused by every "
          "frame), multigrid (conjugate gradient preconditioned by an aggregation multigrid; no "
          "ordering, so a shorter set-up, and faster frames on large patches), auto (multigrid "
-         "for patches of " + std::to_string(kMultigridFreeNodes) + " free vertices or more, "
-         "else cholesky) or cg (frame nets by Jacobi-preconditioned CG; slow, for comparison). "
-         "The nets agree within --cg-tolerance")
+         "for patches of " +
+             std::to_string(kMultigridFreeNodes) +
+             " free vertices or more, "
+             "else cholesky) or cg (frame nets by Jacobi-preconditioned CG; slow, for comparison). "
+             "The nets agree within --cg-tolerance")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "cholesky", "multigrid", "cg"}))
       ->group(method);

@@ -8,7 +8,8 @@
 #
 # Per case, medians over RUNS runs:
 #   - stages (CPU time of one thread, tests/bench/bench_stages.cpp): bind read, bind set-up, and
-#     per frame read, frame net, locate, transfer, write;
+#     per frame read, frame net, locate, transfer, write; the set-up and frame net also with
+#     each net solver forced (--frame-solver cholesky and multigrid; the default is auto);
 #   - end to end (wall clock of the command): frames/second with -j1 and -j2, the -j2 speed-up of
 #     the frame loop alone (the time on the command's summary line, after the set-up), peak
 #     memory, and the I/O floor: the same command with --no-slide (frames read, checked and
@@ -60,6 +61,15 @@ bench() {
   done
   for key in $(awk '{print $1}' "$work/$name.stages.1"); do
     echo "$key $(cat "$work/$name".stages.* | awk -v k="$key" '$1 == k {print $2}' | median)" >>"$res"
+  done
+  # Both net solvers side by side (the runs above use the default, auto).
+  for solver in cholesky multigrid; do
+    for r in $(seq "$runs"); do
+      "$stages" -s "$solver" -o "$out/stages" "$bind" "$patch" "$@" >"$work/$name.$solver.$r"
+    done
+    for key in bind_setup frame_net cg_iterations; do
+      echo "${solver}_$key $(cat "$work/$name.$solver".* | awk -v k="$key" '$1 == k {print $2}' | median)" >>"$res"
+    done
   done
   for mode in slide floor; do
     for j in 1 2; do
@@ -132,6 +142,11 @@ for name, r in rows:
           f"| {f / r['floor_seconds_j1']:.2f} | {f / r['floor_seconds_j2']:.2f} "
           f"| {r['slide_seconds_j1'] / r['floor_seconds_j1']:.2f}x (-j1), {r['slide_seconds_j2'] / r['floor_seconds_j2']:.2f}x (-j2) "
           f"| {r['slide_peak_kb_j1'] / 1024:.0f} / {r['slide_peak_kb_j2'] / 1024:.0f} |")
+print("\n| case | patch vertices | set-up ms: cholesky / multigrid | frame net ms: cholesky / multigrid (iterations) |")
+print("|---|---|---|---|")
+for name, r in rows:
+    print(f"| {name} | {r['patch_vertices']:.0f} | {ms(r['cholesky_bind_setup'])} / {ms(r['multigrid_bind_setup'])} "
+          f"| {ms(r['cholesky_frame_net'])} / {ms(r['multigrid_frame_net'])} ({r['multigrid_cg_iterations']:.0f}) |")
 print("\nStage times: median CPU ms of one thread per frame; (Nx) = N times the I/O floor's time per "
       "frame (--no-slide, -j1). fps: frames/second of the whole command (bind set-up included), wall clock; "
       "(frames alone): the speed-up of the frame loop, after the set-up.")

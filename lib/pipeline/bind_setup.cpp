@@ -176,11 +176,10 @@ Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const P
     net.fixed[outer[k]] = 1;
     start[outer[k]] = outer_2d[k];
   }
-  Positions2 solved =
-      method == FrameNetMethod::Multigrid
-          ? solve_bar_net_multigrid(net, q_all, start, options.cg_tolerance,
-                                    options.cg_max_iterations)
-          : solve_bar_net(net, q_all, start, &node_order);
+  Positions2 solved = method == FrameNetMethod::Multigrid
+                          ? solve_bar_net_multigrid(net, q_all, start, options.cg_tolerance,
+                                                    options.cg_max_iterations)
+                          : solve_bar_net(net, q_all, start, &node_order);
   solved.resize(n);
   return solved;
 }

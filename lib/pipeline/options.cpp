@@ -22,7 +22,8 @@ FrameSolver parse_frame_solver(const std::string& name) {
   if (name == "cholesky") return FrameSolver::Cholesky;
   if (name == "cg") return FrameSolver::Cg;
   if (name == "multigrid") return FrameSolver::Multigrid;
-  throw Error(ErrorKind::Usage, "unknown frame solver '" + name + "' (auto, cholesky, cg, multigrid)");
+  throw Error(ErrorKind::Usage,
+              "unknown frame solver '" + name + "' (auto, cholesky, cg, multigrid)");
 }
 
 Locate parse_locate(const std::string& name) {

@@ -41,11 +41,12 @@ struct RunReport {
 ///   frame_solver, cg_tolerance, cg_max_iterations, locate, lookup_size}, "controls": {weights,
 ///   strength, pins, pins_requested, pins_ignored}, "patches": [per patch: faces, vertices, free,
 ///   pinned, loops, outer_loop_start, outer_loop_chosen, corners, corners_chosen, skipped,
-///   bind_net_flips, frame_solver (cholesky, multigrid or cg; none when skipped)], "frames": [{path, output, patches: [{cg_iterations, cg_residual,
-///   direct_solve, located_in_image, located_fallback, frame_net_flips, moved, max_slide,
-///   mean_slide, spread_frame, spread_slid}]}], "totals": {frames, moved, cg_iterations,
-///   direct_solves, fallbacks, frame_net_flips, max_slide}, "timings": {seconds per stage summed
-///   over frames: bind_setup, read, solve, locate, transfer, write; wall} }
+///   bind_net_flips, frame_solver (cholesky, multigrid or cg; none when skipped)], "frames":
+///   [{path, output, patches: [{cg_iterations, cg_residual, direct_solve, located_in_image,
+///   located_fallback, frame_net_flips, moved, max_slide, mean_slide, spread_frame,
+///   spread_slid}]}], "totals": {frames, moved, cg_iterations, direct_solves, fallbacks,
+///   frame_net_flips, max_slide}, "timings": {seconds per stage summed over frames: bind_setup,
+///   read, solve, locate, transfer, write; wall} }
 /// Skipped patches report zeros. Vertex ids are mesh ids.
 std::string report_json(const BindSetup& setup, const RunReport& run);
 

@@ -93,7 +93,7 @@ class FrameNetSolver {
   SparseMatrix pattern_;                    // K_ff's pattern (values ignored)
   std::vector<std::array<Index, 4>> slot_;  // per bar: value slots (aa, bb, ab, ba), -1 if none
   struct Symbolic;
-  std::shared_ptr<const Symbolic> symbolic_;  // K_ff's symbolic factor (Cholesky)
+  std::shared_ptr<const Symbolic> symbolic_;               // K_ff's symbolic factor (Cholesky)
   std::shared_ptr<const AggregationMultigrid> multigrid_;  // its levels (multigrid)
 };
 

@@ -14,7 +14,8 @@ namespace {
 using Level = AggregationMultigrid::Level;
 using Mat2 = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 
-// Vectors hold the two columns interleaved (x0 y0 x1 y1 ...): a row's two values share a cache line.
+// Vectors hold the two columns interleaved (x0 y0 x1 y1 ...): a row's two values share a cache
+// line.
 using Vec = std::vector<double>;
 
 constexpr Index kCoarsestRows = 200;      // solved by a dense factorisation

@@ -1,6 +1,7 @@
 // Per-stage timings of skinslide's pipeline, calling the library stages directly.
 //
-//   skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] [-l walk|image] -o DIR BIND PATCH FRAME...
+//   skinslide_bench_stages [-r REPEAT] [-s auto|cholesky|multigrid|cg] [-l walk|image] -o DIR BIND
+//   PATCH FRAME...
 //       bind read and set-up, then per frame: read (+ topology check), frame net (force
 //       densities + solve, with CG iterations), ID image (-l image), locate, transfer, write;
 //       plus slide_frame as a whole. Prints "name median_ms" lines (medians over frames x
@@ -165,7 +166,8 @@ int main(int argc, char** argv) {
     }
     if (out_dir.empty() || args.size() < 3u) {
       std::fprintf(stderr,
-                   "usage: skinslide_bench_stages [-r REPEAT] [-s cholesky|cg] [-l walk|image] -o "
+                   "usage: skinslide_bench_stages [-r REPEAT] [-s auto|cholesky|multigrid|cg] [-l "
+                   "walk|image] -o "
                    "DIR BIND PATCH FRAME...\n");
       return 2;
     }

@@ -82,8 +82,7 @@ TEST(AggregationMultigrid, EachLevelSumsAggregatesOfTheOneAbove) {
         ASSERT_LT(slot, coarse.start[ci + 1]);
         EXPECT_EQ(coarse.column[slot], fine.aggregate[fine.column[k]]);
       }
-    for (Index c = 0; c < coarse.rows; ++c)
-      EXPECT_EQ(coarse.column[coarse.diagonal[c]], c);
+    for (Index c = 0; c < coarse.rows; ++c) EXPECT_EQ(coarse.column[coarse.diagonal[c]], c);
   }
   EXPECT_LE(mg.level(mg.levels() - 1).rows, 200);
 }
