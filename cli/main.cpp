@@ -657,16 +657,15 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1e-12, 1.0))
       ->group(method);
-  app.add_option(
-         "--frame-solver", o.frame_solver,
-         "How bind and frame nets are solved: cholesky (sparse factor, analysis reused by every "
-         "frame), multigrid (conjugate gradient preconditioned by an aggregation multigrid; no "
-         "ordering, so a shorter set-up, and faster frames on large patches), auto (multigrid "
-         "for patches of " +
-             std::to_string(kMultigridFreeNodes) +
-             " free vertices or more, "
-             "else cholesky) or cg (frame nets by Jacobi-preconditioned CG; slow, for comparison). "
-             "The nets agree within --cg-tolerance")
+  const std::string solver_help =
+      "How bind and frame nets are solved: cholesky (sparse factor, analysis reused by every "
+      "frame), multigrid (conjugate gradient preconditioned by an aggregation multigrid; no "
+      "ordering, so a shorter set-up, and faster frames on large patches), auto (multigrid for "
+      "patches of " +
+      std::to_string(kMultigridFreeNodes) +
+      " free vertices or more, else cholesky) or cg (frame nets by Jacobi-preconditioned CG; "
+      "slow, for comparison). The nets agree within --cg-tolerance";
+  app.add_option("--frame-solver", o.frame_solver, solver_help)
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "cholesky", "multigrid", "cg"}))
       ->group(method);

@@ -99,9 +99,9 @@ Level coarse_level(Level& fine, const std::vector<Index>& aggregate, Index coars
   return coarse;
 }
 
-Vec coarse_values(const Level& fine, const Vec& value, size_t coarse_nonzeros) {
+Vec coarse_values(const Level& fine, const double* value, size_t coarse_nonzeros) {
   Vec out(coarse_nonzeros, 0.0);
-  for (size_t k = 0; k < value.size(); ++k) out[fine.coarse_slot[k]] += value[k];
+  for (size_t k = 0; k < fine.coarse_slot.size(); ++k) out[fine.coarse_slot[k]] += value[k];
   return out;
 }
 
@@ -117,7 +117,7 @@ Two dot(const Vec& a, const Vec& b) {
 }
 
 // y = A x; returns x.y per column, summed in the same pass.
-Two multiply(const Level& L, const Vec& A, const Vec& x, Vec& y) {
+Two multiply(const Level& L, const double* A, const Vec& x, Vec& y) {
   Two xy{0, 0};
   for (Index i = 0; i < L.rows; ++i) {
     double s0 = 0, s1 = 0;
@@ -134,7 +134,7 @@ Two multiply(const Level& L, const Vec& A, const Vec& x, Vec& y) {
   return xy;
 }
 
-void relax_row(const Level& L, const Vec& A, const Vec& inverse_diagonal, const Vec& b, Vec& x,
+void relax_row(const Level& L, const double* A, const Vec& inverse_diagonal, const Vec& b, Vec& x,
                Index i) {
   double s0 = b[2 * i], s1 = b[2 * i + 1];
   for (Index k = L.start[i]; k < L.start[i + 1]; ++k) {
@@ -151,7 +151,8 @@ void relax_row(const Level& L, const Vec& A, const Vec& inverse_diagonal, const 
 // A level's vectors are reused by every visit: visits to one level never overlap.
 struct Numeric {
   const std::vector<Level>* levels;
-  std::vector<Vec> value;
+  std::vector<const double*> value;  // level 0: the caller's matrix; below: coarse_value
+  std::vector<Vec> coarse_value;
   std::vector<Vec> inverse_diagonal;  // a sweep multiplies: a division would lengthen the chain
   Eigen::LLT<Eigen::MatrixXd> coarsest;
   struct Work {
@@ -167,7 +168,7 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z);
 // next K-cycle (one when the first already reduces the residual enough).
 void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
   const Level& C = (*N.levels)[l];
-  const Vec& A = N.value[l];
+  const double* A = N.value[l];
   Numeric::Work& w = N.work[l];
   const size_t n = rc.size();
   kcycle(N, l, rc, w.c1);
@@ -219,7 +220,7 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
 void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
   const std::vector<Level>& levels = *N.levels;
   const Level& L = levels[l];
-  const Vec& A = N.value[l];
+  const double* A = N.value[l];
   if (l + 1 == levels.size()) {
     Eigen::MatrixXd rhs(L.rows, 2);
     for (Index i = 0; i < L.rows; ++i) rhs.row(i) << r[2 * i], r[2 * i + 1];
@@ -288,7 +289,7 @@ AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
     std::vector<Index> first_pair, second_pair;
     const Index pairs = pair_rows(fine, value, first_pair);
     const Level mid = coarse_level(fine, first_pair, pairs);
-    const Vec mid_value = coarse_values(fine, value, mid.column.size());
+    const Vec mid_value = coarse_values(fine, value.data(), mid.column.size());
     const Index quads = pair_rows(mid, mid_value, second_pair);
     std::vector<Index> aggregate(fine.rows);
     for (Index i = 0; i < fine.rows; ++i) aggregate[i] = second_pair[first_pair[i]];
@@ -298,7 +299,7 @@ AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
       break;
     }
     Level coarse = coarse_level(fine, aggregate, quads);
-    value = coarse_values(fine, value, coarse.column.size());
+    value = coarse_values(fine, value.data(), coarse.column.size());
     levels_.push_back(std::move(coarse));
   }
 }
@@ -311,9 +312,12 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   Numeric N;
   N.levels = &levels_;
   N.value.resize(levels_.size());
-  N.value[0].assign(A.valuePtr(), A.valuePtr() + A.nonZeros());
-  for (size_t l = 0; l + 1 < levels_.size(); ++l)
-    N.value[l + 1] = coarse_values(levels_[l], N.value[l], levels_[l + 1].column.size());
+  N.value[0] = A.valuePtr();
+  N.coarse_value.resize(levels_.size());
+  for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+    N.coarse_value[l + 1] = coarse_values(levels_[l], N.value[l], levels_[l + 1].column.size());
+    N.value[l + 1] = N.coarse_value[l + 1].data();
+  }
   {
     const Level& C = levels_.back();
     Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(C.rows, C.rows);
