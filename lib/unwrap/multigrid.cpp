@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
 #include <Eigen/Cholesky>
 
@@ -267,21 +269,59 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
   for (Index i = L.rows; i-- > 0;) relax_row(L, A, N.inverse_diagonal[l], r, z, i);
 }
 
+// The top level's sweep order: kStrands stretches of the rows interleaved. Consecutive rows of a
+// sweep are then rarely neighbours, so the processor overlaps the chains of dependent updates
+// that a mesh-ordered sweep runs one after another.
+constexpr Index kStrands = 4;
+std::vector<Index> interleaved_order(Index n) {
+  std::array<Index, kStrands + 1> bound{};
+  for (Index s = 0; s <= kStrands; ++s)
+    bound[s] = static_cast<Index>(static_cast<std::int64_t>(n) * s / kStrands);
+  std::vector<Index> order;
+  order.reserve(n);
+  for (Index pos = 0; static_cast<Index>(order.size()) < n; ++pos)
+    for (Index s = 0; s < kStrands; ++s)
+      if (bound[s] + pos < bound[s + 1]) order.push_back(bound[s] + pos);
+  return order;
+}
+
+// The pattern of A with rows and columns renumbered so that new row i is A's row order[i];
+// slot[k] is A's nonzero that new nonzero k holds.
+Level permuted_pattern(const SparseMatrix& A, const std::vector<Index>& order,
+                       std::vector<Index>& slot) {
+  const Index n = static_cast<Index>(A.rows());
+  std::vector<Index> new_id(n);
+  for (Index i = 0; i < n; ++i) new_id[order[i]] = i;
+  Level L;
+  L.rows = n;
+  L.start.assign(1, 0);
+  std::vector<std::pair<Index, Index>> row;  // (new column, A's nonzero)
+  for (Index i = 0; i < n; ++i) {
+    row.clear();
+    for (Index k = A.outerIndexPtr()[order[i]]; k < A.outerIndexPtr()[order[i] + 1]; ++k)
+      row.push_back({new_id[A.innerIndexPtr()[k]], k});
+    std::sort(row.begin(), row.end());
+    Index diagonal = -1;
+    for (const auto& [c, k] : row) {
+      if (c == i) diagonal = static_cast<Index>(L.column.size());
+      L.column.push_back(c);
+      slot.push_back(k);
+    }
+    SKINSLIDE_CHECK(diagonal >= 0, "every row has a diagonal entry");
+    L.diagonal.push_back(diagonal);
+    L.start.push_back(static_cast<Index>(L.column.size()));
+  }
+  return L;
+}
+
 }  // namespace
 
 AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
   SKINSLIDE_CHECK(A.rows() == A.cols() && A.isCompressed(), "a square compressed matrix");
-  Level top;
-  top.rows = static_cast<Index>(A.rows());
-  top.start.assign(A.outerIndexPtr(), A.outerIndexPtr() + top.rows + 1);
-  top.column.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  top.diagonal.assign(top.rows, -1);
-  for (Index i = 0; i < top.rows; ++i)
-    for (Index k = top.start[i]; k < top.start[i + 1]; ++k)
-      if (top.column[k] == i) top.diagonal[i] = k;
-  for (Index d : top.diagonal) SKINSLIDE_CHECK(d >= 0, "every row has a diagonal entry");
-  Vec value(A.valuePtr(), A.valuePtr() + A.nonZeros());
-  levels_.push_back(std::move(top));
+  order_ = interleaved_order(static_cast<Index>(A.rows()));
+  levels_.push_back(permuted_pattern(A, order_, value_slot_));
+  Vec value(value_slot_.size());
+  for (size_t k = 0; k < value.size(); ++k) value[k] = A.valuePtr()[value_slot_[k]];
   // Each level pairs twice (aggregates of up to four rows) until the coarsest is small or
   // coarsening stalls.
   while (levels_.back().rows > kCoarsestRows) {
@@ -312,7 +352,9 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   Numeric N;
   N.levels = &levels_;
   N.value.resize(levels_.size());
-  N.value[0] = A.valuePtr();
+  Vec top_value(value_slot_.size());
+  for (size_t k = 0; k < top_value.size(); ++k) top_value[k] = A.valuePtr()[value_slot_[k]];
+  N.value[0] = top_value.data();
   N.coarse_value.resize(levels_.size());
   for (size_t l = 0; l + 1 < levels_.size(); ++l) {
     N.coarse_value[l + 1] = coarse_values(levels_[l], N.value[l], levels_[l + 1].column.size());
@@ -348,10 +390,10 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   const size_t n = 2 * static_cast<size_t>(top.rows);
   Vec xv(n), bv(n), r(n), z(n), p(n), q(n);
   for (Index i = 0; i < top.rows; ++i) {
-    xv[2 * i] = x(i, 0);
-    xv[2 * i + 1] = x(i, 1);
-    bv[2 * i] = b(i, 0);
-    bv[2 * i + 1] = b(i, 1);
+    xv[2 * i] = x(order_[i], 0);
+    xv[2 * i + 1] = x(order_[i], 1);
+    bv[2 * i] = b(order_[i], 0);
+    bv[2 * i + 1] = b(order_[i], 1);
   }
   multiply(top, N.value[0], xv, r);
   for (size_t i = 0; i < n; ++i) r[i] = bv[i] - r[i];
@@ -396,7 +438,7 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
         rr[c] += r[i + c] * r[i + c];
       }
   }
-  for (Index i = 0; i < top.rows; ++i) x.row(i) << xv[2 * i], xv[2 * i + 1];
+  for (Index i = 0; i < top.rows; ++i) x.row(order_[i]) << xv[2 * i], xv[2 * i + 1];
   return out;
 }
 

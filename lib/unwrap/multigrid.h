@@ -44,7 +44,9 @@ class AggregationMultigrid {
   const Level& level(int l) const { return levels_[l]; }
 
  private:
-  std::vector<Level> levels_;
+  std::vector<Level> levels_;      // level 0: the matrix's rows in sweep order
+  std::vector<Index> order_;       // row of level 0 -> row of the matrix
+  std::vector<Index> value_slot_;  // nonzero of level 0 -> nonzero of the matrix
 };
 
 }  // namespace skinslide
