@@ -31,10 +31,10 @@ enum class FrameSolver {
 };
 
 /// Where Auto switches to Multigrid: the frame system's free nodes. A factorisation grows as
-/// n^1.5 and a multigrid solve as n. On the benchmark's nets a frame costs the same near 90k
-/// free nodes (65k: Cholesky 66 ms, multigrid 72 ms; 93k: 104 and 102 ms; 465k: 1.4 and
-/// 0.9 s), and the multigrid's set-up, with no ordering, is half the Cholesky one.
-constexpr int kMultigridFreeNodes = 80000;
+/// n^1.5 and a multigrid solve as n. On the benchmark's nets a frame costs the same near 60k
+/// free nodes (37k: Cholesky 28 ms, multigrid 36 ms; 65k: 66 and 61 ms; 465k: 1.4 and 0.7 s),
+/// and the multigrid's set-up, with no ordering, is about half the Cholesky one.
+constexpr int kMultigridFreeNodes = 60000;
 
 /// How each free vertex's bind-net point is found in the frame net (the same rule for picking
 /// among the triangles that hold it; README "The method, exactly", 7).
