@@ -33,7 +33,8 @@ class AggregationMultigrid {
 
   /// Per level: rows and sparsity pattern (compressed rows, columns sorted, the diagonal's
   /// position), and for all but the coarsest the row of the next level each row is summed into
-  /// and where each nonzero lands in the next level's values.
+  /// and where each nonzero lands in the next level's values. Level 0 is the matrix with its
+  /// rows and columns permuted into the order its sweeps take.
   struct Level {
     Index rows = 0;
     std::vector<Index> start, column, diagonal;

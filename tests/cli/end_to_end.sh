@@ -41,7 +41,9 @@ check "an identity frame is written unchanged" cmp data/face/bind.obj "$tmp/iden
 "$bin" -q --no-slide --patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/noslide"
 check "--no-slide writes every frame unchanged" diff -r data/elbow/frames "$tmp/noslide"
 "$bin" -q --frame-solver cg --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.cg"
-"$bin" -q --frame-solver multigrid --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.mg"
+"$bin" -q -j 1 --frame-solver multigrid --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.mg"
+"$bin" -q -j 2 --frame-solver multigrid --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.mg2"
+check "--frame-solver multigrid: the same bytes with -j 1 and -j 2" diff -r "$tmp/face.mg" "$tmp/face.mg2"
 "$bin" -q --locate image --patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj -o "$tmp/face.image"
 for out in "$tmp"/face.image/*.obj; do
   check "--locate image: $(basename "$out") matches its golden file" \
