@@ -5,7 +5,6 @@
 #include <mutex>
 
 #include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
 #include <cholmod.h>
 
 #include "core/check.h"
@@ -116,15 +115,6 @@ SparseMatrix free_matrix(const BarNet& net, const std::vector<Index>& free_id,
   return K;
 }
 
-Mat2 direct_solve(const SparseMatrix& K, const Mat2& b) {
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt(K);
-  if (ldlt.info() != Eigen::Success)
-    throw Error(ErrorKind::Numeric, "bar net: the system could not be factorised (singular)");
-  Mat2 x = ldlt.solve(b);
-  if (ldlt.info() != Eigen::Success) throw Error(ErrorKind::Numeric, "bar net: solve failed");
-  return x;
-}
-
 // CHOLMOD's workspace with the settings shared by the analysis and every factorisation: one
 // fixed ordering, so the factor never depends on which ordering a heuristic happened to prefer:
 // CHOLMOD's nested dissection (METIS bisections, constrained minimum degree on the parts), whose
@@ -204,6 +194,31 @@ Mat2 factor_and_solve(const SparseMatrix& K, const Mat2& b, const cholmod_factor
   return x;
 }
 
+// K x = b from scratch: ordering, symbolic analysis and factor. The fill-reducing order, if
+// wanted, goes to `perm` (rows of K).
+Mat2 direct_solve(const SparseMatrix& K, const Mat2& b, std::vector<Index>* perm = nullptr) {
+  Cholmod c;
+  cholmod_sparse A = cholmod_view(K);
+  cholmod_factor* symbolic = analyze_with_nested_dissection(A, c);
+  if (!symbolic || c->status != CHOLMOD_OK) {
+    cholmod_free_factor(&symbolic, c.get());
+    throw Error(ErrorKind::Numeric, "bar net: the symbolic analysis failed");
+  }
+  if (perm) {
+    const Index* p = static_cast<const Index*>(symbolic->Perm);
+    perm->assign(p, p + K.rows());
+  }
+  Mat2 x;
+  try {
+    x = factor_and_solve(K, b, symbolic, c);
+  } catch (...) {
+    cholmod_free_factor(&symbolic, c.get());
+    throw;
+  }
+  cholmod_free_factor(&symbolic, c.get());
+  return x;
+}
+
 }  // namespace
 
 // The symbolic Cholesky factor of K_ff's pattern, computed once and copied per frame.
@@ -226,25 +241,10 @@ Positions2 solve_bar_net(const BarNet& net, const std::vector<double>& q,
   SparseMatrix K = free_matrix(net, s.free_id, q, rows);
   K.makeCompressed();
   const Mat2 b = fixed_pull(net, s.free_id, q, positions, rows);
-  Cholmod c;
-  cholmod_sparse A = cholmod_view(K);
-  cholmod_factor* symbolic = analyze_with_nested_dissection(A, c);
-  if (!symbolic || c->status != CHOLMOD_OK) {
-    cholmod_free_factor(&symbolic, c.get());
-    throw Error(ErrorKind::Numeric, "bar net: the symbolic analysis failed");
-  }
-  if (node_order) {
-    const Index* perm = static_cast<const Index*>(symbolic->Perm);
-    for (Index k = 0; k < rows; ++k) node_order->push_back(s.free_nodes[perm[k]]);
-  }
-  Mat2 x;
-  try {
-    x = factor_and_solve(K, b, symbolic, c);
-  } catch (...) {
-    cholmod_free_factor(&symbolic, c.get());
-    throw;
-  }
-  cholmod_free_factor(&symbolic, c.get());
+  std::vector<Index> perm;
+  const Mat2 x = direct_solve(K, b, node_order ? &perm : nullptr);
+  if (node_order)
+    for (Index k : perm) node_order->push_back(s.free_nodes[k]);
   return scatter(net, s.free_id, x, positions);
 }
 

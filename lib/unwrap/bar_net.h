@@ -58,7 +58,7 @@ struct FrameNetSolution {
   int iterations = 0;    ///< CG iterations, the larger of x and y (0 for Cholesky and when the
                          ///< warm start is kept)
   double residual = 0;   ///< CG's final |r|/|b|, the larger of x and y (0 for Cholesky)
-  bool direct = false;   ///< CG did not converge: solved by SimplicialLDLT instead
+  bool direct = false;   ///< CG did not converge: solved by a fresh CHOLMOD factor instead
 };
 
 /// Solves the same net (same bars, same fixed nodes at the same positions) for many q vectors
