@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <utility>
 
-#include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
 
 #include "core/check.h"
 
@@ -20,13 +20,19 @@ using Mat2 = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 // line.
 using Vec = std::vector<double>;
 
-constexpr Index kCoarsestRows = 200;      // solved by a dense factorisation
+constexpr Index kCoarsestRows = 200;      // solved by a sparse factorisation
 constexpr double kStrongCoupling = 0.25;  // a neighbour is strong at >= 1/4 of the row's largest
 constexpr double kInnerReduction = 0.25;  // K-cycle: one inner iteration suffices below this
+// Stagnation: a solve gives up when kStallWindow iterations cut the residual by less than
+// kStallReduction. A frame net takes 14-28 iterations in all; nets whose densities jump by
+// many orders of magnitude between neighbours can take hundreds.
+constexpr int kStallWindow = 20;
+constexpr double kStallReduction = 10.0;
 
-// Pairs each row with its strongest unpaired neighbour, in row order (deterministic). Returns the
-// pair index of every row and the number of pairs (singletons count as pairs of one).
-Index pair_rows(const Level& level, const Vec& value, std::vector<Index>& pair) {
+// Pairs each row with its strongest unpaired neighbour among those coupled at least `strong`
+// times as strongly as the row's strongest, in row order (deterministic). Returns the pair index
+// of every row and the number of pairs (singletons count as pairs of one).
+Index pair_rows(const Level& level, const Vec& value, double strong, std::vector<Index>& pair) {
   const Index n = level.rows;
   pair.assign(n, -1);
   Index pairs = 0;
@@ -41,7 +47,7 @@ Index pair_rows(const Level& level, const Vec& value, std::vector<Index>& pair) 
       const Index j = level.column[k];
       if (j == i || pair[j] >= 0) continue;
       const double a = -value[k];
-      if (a >= kStrongCoupling * largest && a > best_value) {
+      if (a >= strong * largest && a > best_value) {
         best = j;
         best_value = a;
       }
@@ -156,7 +162,7 @@ struct Numeric {
   std::vector<const double*> value;  // level 0: the caller's matrix; below: coarse_value
   std::vector<Vec> coarse_value;
   std::vector<Vec> inverse_diagonal;  // a sweep multiplies: a division would lengthen the chain
-  Eigen::LLT<Eigen::MatrixXd> coarsest;
+  Eigen::SimplicialLDLT<SparseMatrix> coarsest;
   struct Work {
     Vec rc, zc;              // kcycle: the restricted residual and its correction (next level)
     Vec c1, v1, r2, c2, v2;  // coarse_correction on this level
@@ -224,9 +230,9 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
   const Level& L = levels[l];
   const double* A = N.value[l];
   if (l + 1 == levels.size()) {
-    Eigen::MatrixXd rhs(L.rows, 2);
+    Mat2 rhs(L.rows, 2);
     for (Index i = 0; i < L.rows; ++i) rhs.row(i) << r[2 * i], r[2 * i + 1];
-    const Eigen::MatrixXd sol = N.coarsest.solve(rhs);
+    const Mat2 sol = N.coarsest.solve(rhs);
     for (Index i = 0; i < L.rows; ++i) {
       z[2 * i] = sol(i, 0);
       z[2 * i + 1] = sol(i, 1);
@@ -324,16 +330,23 @@ AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
   for (size_t k = 0; k < value.size(); ++k) value[k] = A.valuePtr()[value_slot_[k]];
   // Each level pairs twice (aggregates of up to four rows) until the coarsest is small or
   // coarsening stalls.
+  // Where strong couplings leave too many rows unpaired (couplings that jump by orders of
+  // magnitude), the level pairs again with any coupled neighbour; a level that still stalls is
+  // the coarsest, whatever its size (its factor is sparse).
   while (levels_.back().rows > kCoarsestRows) {
     Level& fine = levels_.back();
-    std::vector<Index> first_pair, second_pair;
-    const Index pairs = pair_rows(fine, value, first_pair);
-    const Level mid = coarse_level(fine, first_pair, pairs);
-    const Vec mid_value = coarse_values(fine, value.data(), mid.column.size());
-    const Index quads = pair_rows(mid, mid_value, second_pair);
     std::vector<Index> aggregate(fine.rows);
-    for (Index i = 0; i < fine.rows; ++i) aggregate[i] = second_pair[first_pair[i]];
-    if (quads * 3 > fine.rows * 2) {  // less than 1.5x coarser: stop here
+    Index quads = 0;
+    for (double strong : {kStrongCoupling, 0.0}) {
+      std::vector<Index> first_pair, second_pair;
+      const Index pairs = pair_rows(fine, value, strong, first_pair);
+      const Level mid = coarse_level(fine, first_pair, pairs);
+      const Vec mid_value = coarse_values(fine, value.data(), mid.column.size());
+      quads = pair_rows(mid, mid_value, strong, second_pair);
+      for (Index i = 0; i < fine.rows; ++i) aggregate[i] = second_pair[first_pair[i]];
+      if (quads * 3 <= fine.rows * 2) break;  // at least 1.5x coarser
+    }
+    if (quads * 3 > fine.rows * 2) {
       fine.aggregate.clear();
       fine.coarse_slot.clear();
       break;
@@ -362,10 +375,11 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   }
   {
     const Level& C = levels_.back();
-    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(C.rows, C.rows);
-    for (Index i = 0; i < C.rows; ++i)
-      for (Index k = C.start[i]; k < C.start[i + 1]; ++k) dense(i, C.column[k]) = N.value.back()[k];
-    N.coarsest.compute(dense);
+    // Compressed rows of a symmetric matrix are its compressed columns.
+    const Eigen::Map<const SparseMatrix> coarsest(C.rows, C.rows,
+                                                  static_cast<Index>(C.column.size()),
+                                                  C.start.data(), C.column.data(), N.value.back());
+    N.coarsest.compute(coarsest);
     // A singular system (a part with no fixed node) or non-finite values: not solvable here.
     if (N.coarsest.info() != Eigen::Success) return {};
   }
@@ -400,6 +414,7 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   const Two bb = dot(bv, bv);
   Two rr = dot(r, r), pq_previous{0, 0};
   MultigridResult out;
+  std::vector<double> history;  // the worse column's relative residual per iteration
   for (int it = 0;; ++it) {
     bool active[2];
     double worst = 0;
@@ -409,12 +424,14 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
     }
     out.residual = worst;
     out.iterations = it;
+    history.push_back(worst);
     if (!std::isfinite(worst)) break;
     if (!active[0] && !active[1]) {
       out.converged = true;
       break;
     }
     if (it == max_iterations) break;
+    if (it >= kStallWindow && worst * kStallReduction > history[it - kStallWindow]) break;
     kcycle(N, 0, r, z);
     // Flexible CG: p is made A-orthogonal to the previous p (the K-cycle is not a fixed linear
     // operator). A converged column keeps its x and r.

@@ -25,7 +25,9 @@ class AggregationMultigrid {
 
   /// Solves A x = b for two right-hand sides at once (x and y of a net), starting from x.
   /// A has the pattern the hierarchy was built from; its values may differ.
-  /// Stops when |r| <= tolerance |b| in each column, or after max_iterations.
+  /// Stops when |r| <= tolerance |b| in each column (converged), or unconverged after
+  /// max_iterations or when 20 iterations in a row cut the residual less than 10x (stagnation,
+  /// for a caller to solve directly instead).
   /// Deterministic, const and thread-safe: all per-solve values live in the call.
   MultigridResult solve(const SparseMatrix& A, const Eigen::Matrix<double, Eigen::Dynamic, 2>& b,
                         Eigen::Matrix<double, Eigen::Dynamic, 2>& x, double tolerance,

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <thread>
@@ -143,6 +144,39 @@ TEST(AggregationMultigrid, StopsUnconvergedAtTheIterationLimit) {
   EXPECT_EQ(r.iterations, 2);
   EXPECT_GT(r.residual, 1e-14);
   EXPECT_TRUE(x.allFinite());
+}
+
+// Densities that jump by up to 12 orders of magnitude between neighbours: pairing stalls and the
+// K-cycle barely helps. The solve gives up early (for a direct solve) instead of running on.
+TEST(AggregationMultigrid, GivesUpEarlyWhenDensitiesJumpByManyOrdersOfMagnitude) {
+  std::mt19937 rng{13};
+  std::uniform_real_distribution<double> exponent(-12.0, 0.0);
+  const SparseMatrix A = grid_system(60, [&] { return std::pow(10.0, exponent(rng)); });
+  const AggregationMultigrid mg(A);
+  const Mat2 b = random_rhs(A.rows(), 14);
+  Mat2 x = Mat2::Zero(A.rows(), 2);
+  const MultigridResult r = mg.solve(A, b, x, 1e-12, 2000);
+  EXPECT_FALSE(r.converged);
+  EXPECT_LT(r.iterations, 100);
+  EXPECT_TRUE(x.allFinite());
+}
+
+// Rows with no coupling at all cannot be paired: the first level is the coarsest, however large,
+// and its sparse factor solves it at once.
+TEST(AggregationMultigrid, AnUncoupledSystemOfAnySizeIsSolvedOnItsOwnLevel) {
+  const Index n = 50000;
+  SparseMatrix A(n, n);
+  std::vector<Triplet> diagonal;
+  for (Index i = 0; i < n; ++i) diagonal.emplace_back(i, i, 1.0 + i % 7);
+  A.setFromTriplets(diagonal.begin(), diagonal.end());
+  A.makeCompressed();
+  const AggregationMultigrid mg(A);
+  EXPECT_EQ(mg.levels(), 1);
+  const Mat2 b = random_rhs(n, 15);
+  Mat2 x = Mat2::Zero(n, 2);
+  const MultigridResult r = mg.solve(A, b, x, 1e-12, 10);
+  EXPECT_TRUE(r.converged);
+  for (Index i = 0; i < n; i += 997) EXPECT_NEAR(x(i, 0), b(i, 0) / (1.0 + i % 7), 1e-14);
 }
 
 TEST(AggregationMultigrid, ASmallSystemIsItsOwnCoarsestLevel) {
