@@ -59,10 +59,10 @@ Index pair_rows(const Level& level, const Vec& value, double strong, std::vector
   return pairs;
 }
 
-// The pattern of P^T A P for piecewise-constant P (rows summed by aggregate), with the slot of
-// each fine nonzero in it.
-Level coarse_level(Level& fine, const std::vector<Index>& aggregate, Index coarse_rows) {
-  fine.aggregate = aggregate;
+// The pattern of P^T A P for piecewise-constant P (rows summed by aggregate); `slot` receives
+// where each fine nonzero lands in it.
+Level coarse_level(const Level& fine, const std::vector<Index>& aggregate, Index coarse_rows,
+                   std::vector<Index>& slot) {
   Level coarse;
   coarse.rows = coarse_rows;
   // Fine rows grouped by aggregate (counting sort), then each coarse row's columns collected.
@@ -74,7 +74,7 @@ Level coarse_level(Level& fine, const std::vector<Index>& aggregate, Index coars
     for (Index i = 0; i < fine.rows; ++i) members[next[aggregate[i]]++] = i;
   }
   coarse.start.assign(1, 0);
-  fine.coarse_slot.assign(fine.column.size(), -1);
+  slot.assign(fine.column.size(), -1);
   std::vector<Index> slot_of(coarse_rows, -1);  // coarse column -> slot in the current coarse row
   std::vector<Index> columns;
   for (Index c = 0; c < coarse_rows; ++c) {
@@ -99,7 +99,7 @@ Level coarse_level(Level& fine, const std::vector<Index>& aggregate, Index coars
     for (Index m = first[c]; m < first[c + 1]; ++m) {
       const Index i = members[m];
       for (Index k = fine.start[i]; k < fine.start[i + 1]; ++k)
-        fine.coarse_slot[k] = slot_of[aggregate[fine.column[k]]];
+        slot[k] = slot_of[aggregate[fine.column[k]]];
     }
     for (Index cj : columns) slot_of[cj] = -1;
     coarse.start.push_back(static_cast<Index>(coarse.column.size()));
@@ -107,9 +107,10 @@ Level coarse_level(Level& fine, const std::vector<Index>& aggregate, Index coars
   return coarse;
 }
 
-Vec coarse_values(const Level& fine, const double* value, size_t coarse_nonzeros) {
+// The values of P^T A P: each fine value summed into its slot.
+Vec coarse_values(const std::vector<Index>& slot, const double* value, size_t coarse_nonzeros) {
   Vec out(coarse_nonzeros, 0.0);
-  for (size_t k = 0; k < fine.coarse_slot.size(); ++k) out[fine.coarse_slot[k]] += value[k];
+  for (size_t k = 0; k < slot.size(); ++k) out[slot[k]] += value[k];
   return out;
 }
 
@@ -328,31 +329,29 @@ AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
   levels_.push_back(permuted_pattern(A, order_, value_slot_));
   Vec value(value_slot_.size());
   for (size_t k = 0; k < value.size(); ++k) value[k] = A.valuePtr()[value_slot_[k]];
-  // Each level pairs twice (aggregates of up to four rows) until the coarsest is small or
-  // coarsening stalls.
-  // Where strong couplings leave too many rows unpaired (couplings that jump by orders of
-  // magnitude), the level pairs again with any coupled neighbour; a level that still stalls is
-  // the coarsest, whatever its size (its factor is sparse).
+  // Each level pairs twice (aggregates of up to four rows) until the coarsest is small. Where
+  // strong couplings leave too many rows unpaired (couplings that jump by orders of magnitude),
+  // the level pairs again with any coupled neighbour; a level that still stalls is the
+  // coarsest, whatever its size (its factor is sparse).
   while (levels_.back().rows > kCoarsestRows) {
-    Level& fine = levels_.back();
+    const Level& fine = levels_.back();
     std::vector<Index> aggregate(fine.rows);
     Index quads = 0;
     for (double strong : {kStrongCoupling, 0.0}) {
-      std::vector<Index> first_pair, second_pair;
+      std::vector<Index> first_pair, second_pair, mid_slot;
       const Index pairs = pair_rows(fine, value, strong, first_pair);
-      const Level mid = coarse_level(fine, first_pair, pairs);
-      const Vec mid_value = coarse_values(fine, value.data(), mid.column.size());
+      const Level mid = coarse_level(fine, first_pair, pairs, mid_slot);
+      const Vec mid_value = coarse_values(mid_slot, value.data(), mid.column.size());
       quads = pair_rows(mid, mid_value, strong, second_pair);
       for (Index i = 0; i < fine.rows; ++i) aggregate[i] = second_pair[first_pair[i]];
       if (quads * 3 <= fine.rows * 2) break;  // at least 1.5x coarser
     }
-    if (quads * 3 > fine.rows * 2) {
-      fine.aggregate.clear();
-      fine.coarse_slot.clear();
-      break;
-    }
-    Level coarse = coarse_level(fine, aggregate, quads);
-    value = coarse_values(fine, value.data(), coarse.column.size());
+    if (quads * 3 > fine.rows * 2) break;
+    std::vector<Index> slot;
+    Level coarse = coarse_level(fine, aggregate, quads, slot);
+    value = coarse_values(slot, value.data(), coarse.column.size());
+    levels_.back().aggregate = std::move(aggregate);
+    levels_.back().coarse_slot = std::move(slot);
     levels_.push_back(std::move(coarse));
   }
 }
@@ -370,7 +369,8 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   N.value[0] = top_value.data();
   N.coarse_value.resize(levels_.size());
   for (size_t l = 0; l + 1 < levels_.size(); ++l) {
-    N.coarse_value[l + 1] = coarse_values(levels_[l], N.value[l], levels_[l + 1].column.size());
+    N.coarse_value[l + 1] =
+        coarse_values(levels_[l].coarse_slot, N.value[l], levels_[l + 1].column.size());
     N.value[l + 1] = N.coarse_value[l + 1].data();
   }
   {
