@@ -239,24 +239,16 @@ SlideOptions slide_options(const CliOptions& o) {
 }
 
 struct FrameSummary {
-  int cg_iterations = 0;
-  int direct_solves = 0;
   int fallbacks = 0;
-  int net_flips = 0;
   double max_slide = 0;
-  size_t moved = 0;
 };
 
 FrameSummary summarise(const FrameResult& r) {
   FrameSummary s;
   for (const PatchFrameReport& p : r.patches) {
-    s.cg_iterations = std::max(s.cg_iterations, p.cg_iterations);
-    s.direct_solves += p.direct_solve;
     s.fallbacks += p.located_fallback;
-    s.net_flips += p.frame_net_flips;
     s.max_slide = std::max(s.max_slide, p.max_slide);
   }
-  s.moved = r.slid.vertex.size();
   return s;
 }
 
