@@ -542,6 +542,7 @@ int run(const CliOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  skinslide::restart_with_huge_pages(argv);
   std::setlocale(LC_ALL, "C");
   skinslide::keep_freed_memory();
   CliOptions o;

@@ -145,7 +145,8 @@ int stages(int repeat, const SlideOptions& options, const std::string& out_dir,
 }  // namespace
 
 int main(int argc, char** argv) {
-  keep_freed_memory();  // as the command does
+  restart_with_huge_pages(argv);  // as the command does
+  keep_freed_memory();
   try {
     int repeat = 1;
     std::string out_dir;
