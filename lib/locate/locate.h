@@ -46,11 +46,14 @@ std::vector<Location> locate_points(const Positions2& points, const Positions2& 
 /// whose bind position the point is) and steps across the edge of the most negative barycentric,
 /// at most 64 + 4 sqrt(#triangles) steps, until a triangle holds the point (all barycentrics
 /// >= -kInsideEps). The candidates are that triangle and every triangle sharing a corner with
-/// it, chosen by the rule of locate_points; a walk that leaves the net or runs out of steps ends
-/// in the same fallback. Away from the reversed triangles a triangle that holds the point strictly
-/// inside is the only candidate that can win, so the others are not evaluated there: with the
-/// loops simple, the triangles of the majority orientation cover a point twice only where a
-/// reversed triangle covers it too, and a zero-area triangle (three nodes on one side of the
+/// it, chosen by the rule of locate_points. A walk that leaves the net, circles (Brent's check
+/// stops it) or runs out of steps is finished by a breadth-first search across shared edges from
+/// where it ended, over at most 4096 triangles, for a triangle that holds the point (then the
+/// same candidates); failing that, it ends in the fallback of locate_points. Points finished
+/// either way are marked `fallback`. Away from the reversed triangles a triangle that holds the
+/// point strictly inside is the only candidate that can win, so the others are not evaluated there:
+/// with the loops simple, the triangles of the majority orientation cover a point twice only where
+/// a reversed triangle covers it too, and a zero-area triangle (three nodes on one side of the
 /// square) holds no point. "Away" is outside every reversed triangle's bounding box grown by
 /// kInsideEps of its size, beyond which none of them can hold the point.
 /// \param start #P node ids; topology from triangle_topology(triangles, net.size()).

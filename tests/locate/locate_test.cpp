@@ -1,6 +1,7 @@
 #include "locate/locate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <random>
 
@@ -250,6 +251,50 @@ TEST(LocateWalk, ABlockedWalkEndsInTheFallback) {
   EXPECT_EQ(loc[1].triangle, 0);
   EXPECT_TRUE(loc[2].fallback);  // outside the net: the nearest triangle, clamped
   EXPECT_NEAR(loc[2].weight[1], 1.0, 1e-15);
+}
+
+// A net with a square hole: walks from one side towards points behind the hole end at its
+// border. The search around the walk's end then finds the triangle the rule picks among all.
+TEST(LocateWalk, AWalkBlockedByAHoleIsFinishedNearby) {
+  Net net = grid(20, 0.3, 7);
+  std::vector<Triangle> kept;
+  for (size_t t = 0; t < net.triangles.size(); ++t) {
+    const int cell = static_cast<int>(t / 2), i = cell % 20, j = cell / 20;
+    if (i < 6 || i > 13 || j < 6 || j > 13) kept.push_back(net.triangles[t]);
+  }
+  const Index nodes = static_cast<Index>(net.points.size());
+  const TriangleTopology topo = triangle_topology(kept, nodes);
+  // Points on a ring round the hole, each walked from the node diametrically opposite.
+  Positions2 pts;
+  std::vector<Index> start;
+  for (int k = 0; k < 64; ++k) {
+    const double a = 2 * M_PI * k / 64;
+    pts.push_back(Vec2(0.5, 0.5) + 0.3 * Vec2(std::cos(a), std::sin(a)));
+    const Vec2 opposite = Vec2(0.5, 0.5) - 0.36 * Vec2(std::cos(a), std::sin(a));
+    const int i = std::clamp(static_cast<int>(std::lround(opposite.x() * 20)), 0, 20);
+    const int j = std::clamp(static_cast<int>(std::lround(opposite.y() * 20)), 0, 20);
+    start.push_back(j * 21 + i);
+  }
+  const auto walk = locate_points_by_walk(pts, start, net.points, kept, topo, {});
+  int finished_nearby = 0;
+  for (size_t k = 0; k < pts.size(); ++k) {
+    // The rule over every triangle: the largest smallest barycentric, then the lower index.
+    Index best = -1;
+    double best_min = -INFINITY;
+    for (size_t t = 0; t < kept.size(); ++t) {
+      const Triangle& tri = kept[t];
+      const Barycentric w =
+          barycentric(pts[k], net.points[tri[0]], net.points[tri[1]], net.points[tri[2]]);
+      if (w.ok && w.min() >= -kInsideEps && w.min() > best_min) {
+        best_min = w.min();
+        best = static_cast<Index>(t);
+      }
+    }
+    ASSERT_GE(best, 0) << k;  // the ring lies in the net, outside the hole
+    EXPECT_EQ(walk[k].triangle, best) << k;
+    finished_nearby += walk[k].fallback;
+  }
+  EXPECT_GT(finished_nearby, 8);  // the hole does block walks
 }
 
 TEST(LocateWalk, InAFoldedNetTheBestOfTheOverlappingTrianglesWins) {
