@@ -304,12 +304,22 @@ std::vector<Location> locate_points_by_walk(const Positions2& points,
   const int max_steps = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(triangles.size())));
   const NearTriangles near_reversed(net, triangles, reversed);
   NearbySearch nearby(triangles.size());
+  Index previous = -1;  // the triangle that held the previous point
   for (size_t k = 0; k < points.size(); ++k) {
     const Vec2& p = points[k];
     const Index v = start[k];
     SKINSLIDE_CHECK(topology.corner_start[v] < topology.corner_start[v + 1],
                     "a start node with triangles");
+    // The walk starts from the point's own node, or from the triangle that held the previous
+    // point if that is nearer. The node is as far from the point as the frame moved it (many
+    // triangles on a large patch); consecutive points are mostly neighbouring vertices, one
+    // edge apart. Away from the reversed triangles either start ends in the same holder (or
+    // the same candidates); near them, where triangles overlap, the walk keeps the node's start.
     Index t = topology.corner_triangles[topology.corner_start[v]];
+    const bool near_fold = near_reversed.contains(p);
+    if (previous >= 0 && !near_fold &&
+        (net[triangles[previous][0]] - p).squaredNorm() < (net[v] - p).squaredNorm())
+      t = previous;
     Barycentric w;
     bool held = false;
     // Around folds and holes a walk can circle for ever; Brent's check (a checkpoint moved at
@@ -343,12 +353,15 @@ std::vector<Location> locate_points_by_walk(const Positions2& points,
       }
     }
     const bool walked = held;
-    if (!held) held = nearby.find_holder(p, t, net, triangles, topology, w);
+    // Near a fold the first holder found need not lead to the rule's choice among overlapping
+    // triangles: the grid of locate_missed, which sees them all, decides there.
+    if (!held && !near_fold) held = nearby.find_holder(p, t, net, triangles, topology, w);
     if (!held) {
       missed.push_back(k);
       continue;
     }
-    if (w.min() > 0 && !near_reversed.contains(p)) {
+    previous = t;
+    if (w.min() > 0 && !near_fold) {
       out[k] = Location{t, w.w, !walked};
       continue;
     }

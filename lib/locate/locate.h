@@ -43,13 +43,16 @@ std::vector<Location> locate_points(const Positions2& points, const Positions2& 
 
 /// The same search without an image: point k is looked for by a walk through the net that starts
 /// at the lowest-index triangle with corner `start[k]` (a node near the point, e.g. the vertex
-/// whose bind position the point is) and steps across the edge of the most negative barycentric,
+/// whose bind position the point is), or, away from the reversed triangles, at the triangle that
+/// held point k-1 when that triangle's first corner is nearer, and steps across the edge of the
+/// most negative barycentric,
 /// at most 64 + 4 sqrt(#triangles) steps, until a triangle holds the point (all barycentrics
 /// >= -kInsideEps). The candidates are that triangle and every triangle sharing a corner with
 /// it, chosen by the rule of locate_points. A walk that leaves the net, circles (Brent's check
-/// stops it) or runs out of steps is finished by a breadth-first search across shared edges from
-/// where it ended, over at most 4096 triangles, for a triangle that holds the point (then the
-/// same candidates); failing that, it ends in the fallback of locate_points. Points finished
+/// stops it) or runs out of steps is finished, away from the reversed triangles, by a
+/// breadth-first search across shared edges from where it ended, over at most 4096 triangles,
+/// for a triangle that holds the point (then the same candidates); failing that, and near the
+/// reversed triangles, it ends in the fallback of locate_points. Points finished
 /// either way are marked `fallback`. Away from the reversed triangles a triangle that holds the
 /// point strictly inside is the only candidate that can win, so the others are not evaluated there:
 /// with the loops simple, the triangles of the majority orientation cover a point twice only where

@@ -275,9 +275,11 @@ TEST(LocateWalk, AWalkBlockedByAHoleIsFinishedNearby) {
     const int j = std::clamp(static_cast<int>(std::lround(opposite.y() * 20)), 0, 20);
     start.push_back(j * 21 + i);
   }
-  const auto walk = locate_points_by_walk(pts, start, net.points, kept, topo, {});
   int finished_nearby = 0;
   for (size_t k = 0; k < pts.size(); ++k) {
+    // One point a call: each walk starts from its own node, not from the point before.
+    const Location walk =
+        locate_points_by_walk({pts[k]}, {start[k]}, net.points, kept, topo, {})[0];
     // The rule over every triangle: the largest smallest barycentric, then the lower index.
     Index best = -1;
     double best_min = -INFINITY;
@@ -291,10 +293,42 @@ TEST(LocateWalk, AWalkBlockedByAHoleIsFinishedNearby) {
       }
     }
     ASSERT_GE(best, 0) << k;  // the ring lies in the net, outside the hole
-    EXPECT_EQ(walk[k].triangle, best) << k;
-    finished_nearby += walk[k].fallback;
+    EXPECT_EQ(walk.triangle, best) << k;
+    finished_nearby += walk.fallback;
   }
   EXPECT_GT(finished_nearby, 8);  // the hole does block walks
+}
+
+// Each walk may start from the triangle that held the point before: in any order, and in a
+// folded net, every point gets what it gets when located alone from its own node.
+TEST(LocateWalk, StartingFromThePreviousPointChangesNoResult) {
+  Net net = grid(30, 0.3, 3);
+  // Fold the net: one node pushed across its neighbours.
+  net.points[15 * 31 + 15] += Vec2(2.5 / 30, 1.5 / 30);
+  const TriangleTopology topo = triangle_topology(net.triangles, Index(net.points.size()));
+  const Folds folds = count_folds(net.points, net.triangles);
+  ASSERT_FALSE(folds.reversed.empty());
+  std::mt19937 rng{11};
+  std::uniform_real_distribution<double> u(0, 1);
+  std::uniform_int_distribution<Index> node(0, Index(net.points.size()) - 1);
+  Positions2 pts;
+  std::vector<Index> start;
+  for (int k = 0; k < 2000; ++k) {
+    // Runs of neighbouring points (the chained start helps) broken by jumps (it must not hurt).
+    const Vec2 p = k % 50 == 0 || pts.empty()
+                       ? Vec2(u(rng), u(rng))
+                       : Vec2(pts.back() + Vec2(0.01 * (u(rng) - 0.5), 0.01 * (u(rng) - 0.5)));
+    pts.push_back(p.cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1)));
+    start.push_back(node(rng));
+  }
+  const auto chained =
+      locate_points_by_walk(pts, start, net.points, net.triangles, topo, folds.reversed);
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const Location alone = locate_points_by_walk({pts[k]}, {start[k]}, net.points, net.triangles,
+                                                 topo, folds.reversed)[0];
+    EXPECT_EQ(chained[k].triangle, alone.triangle) << k;
+    EXPECT_EQ(chained[k].weight, alone.weight) << k;
+  }
 }
 
 TEST(LocateWalk, InAFoldedNetTheBestOfTheOverlappingTrianglesWins) {
