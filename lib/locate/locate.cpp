@@ -29,27 +29,60 @@ std::optional<Location> best_holder(const Vec2& p, const Positions2& net,
   return best;
 }
 
-// A uniform grid over the triangles' bounding boxes: complete candidate sets for the fallback.
-class TriangleGrid {
+// A uniform n x n grid of square cells over the net's extent: the cell of a point, and the
+// cells a triangle's bounding box covers.
+class GridCells {
  public:
-  TriangleGrid(const Positions2& net, const std::vector<Triangle>& triangles, int cells)
-      : net_(net), triangles_(triangles), n_(cells) {
-    lo_ = Vec2(INFINITY, INFINITY);
+  GridCells(const Positions2& net, int n) : n_(n) {
     Vec2 hi(-INFINITY, -INFINITY);
     for (const Vec2& p : net) {
       lo_ = lo_.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
     cell_ = std::max((hi - lo_).maxCoeff() / n_, 1e-300);
+  }
+  int n() const { return n_; }
+  double size() const { return cell_; }
+  std::array<int, 2> of(const Vec2& p) const {
+    return {clamp_cell((p.x() - lo_.x()) / cell_), clamp_cell((p.y() - lo_.y()) / cell_)};
+  }
+  size_t index(int i, int j) const { return static_cast<size_t>(j) * n_ + i; }
+  /// i0, j0, i1, j1: the cells from (i0, j0) to (i1, j1) cover the triangle's box.
+  std::array<int, 4> box(const Positions2& net, const Triangle& t) const {
+    const Vec2& a = net[t[0]];
+    const Vec2& b = net[t[1]];
+    const Vec2& c = net[t[2]];
+    return {clamp_cell((std::min({a.x(), b.x(), c.x()}) - lo_.x()) / cell_),
+            clamp_cell((std::min({a.y(), b.y(), c.y()}) - lo_.y()) / cell_),
+            clamp_cell((std::max({a.x(), b.x(), c.x()}) - lo_.x()) / cell_),
+            clamp_cell((std::max({a.y(), b.y(), c.y()}) - lo_.y()) / cell_)};
+  }
+
+ private:
+  int clamp_cell(double x) const {
+    if (!(x >= 0)) return 0;
+    return std::min(static_cast<int>(x), n_ - 1);
+  }
+  int n_;
+  Vec2 lo_{INFINITY, INFINITY};
+  double cell_ = 1;
+};
+
+// A uniform grid over the triangles' bounding boxes: complete candidate sets for the fallback.
+class TriangleGrid {
+ public:
+  TriangleGrid(const Positions2& net, const std::vector<Triangle>& triangles,
+               const GridCells& cells)
+      : net_(net), triangles_(triangles), cells_(cells), n_(cells.n()) {
     start_.assign(static_cast<size_t>(n_) * n_ + 1, 0);
     // Two passes (count, fill) keep each cell's list in ascending triangle order.
     for (int pass = 0; pass < 2; ++pass) {
       std::vector<Index> fill(start_.begin(), start_.end() - 1);
       for (size_t t = 0; t < triangles.size(); ++t) {
-        const auto [i0, j0, i1, j1] = box(t);
+        const auto [i0, j0, i1, j1] = cells_.box(net_, triangles_[t]);
         for (int j = j0; j <= j1; ++j)
           for (int i = i0; i <= i1; ++i) {
-            const size_t c = static_cast<size_t>(j) * n_ + i;
+            const size_t c = cells_.index(i, j);
             if (pass == 0)
               ++start_[c + 1];
             else
@@ -63,22 +96,29 @@ class TriangleGrid {
     }
   }
 
+  /// The rule's choice among the triangles whose box covers p's cell, else the nearest.
   Location locate(const Vec2& p) const {
-    const int pi = clamp_cell((p.x() - lo_.x()) / cell_);
-    const int pj = clamp_cell((p.y() - lo_.y()) / cell_);
-    std::vector<Index> candidates(items_.begin() + start_[pj * n_ + pi],
-                                  items_.begin() + start_[pj * n_ + pi + 1]);
+    const auto [pi, pj] = cells_.of(p);
+    const size_t c = cells_.index(pi, pj);
+    const std::vector<Index> candidates(items_.begin() + start_[c], items_.begin() + start_[c + 1]);
     if (auto holder = best_holder(p, net_, triangles_, candidates)) {
       holder->fallback = true;
       return *holder;
     }
-    // Nearest triangle: rings of cells around p until no unseen cell can be closer.
+    return nearest(p);
+  }
+
+  /// The nearest triangle to p (lowest index on ties), with the barycentrics of its closest
+  /// point: for a point that no triangle holds.
+  Location nearest(const Vec2& p) const {
+    const auto [pi, pj] = cells_.of(p);
+    // Rings of cells around p until no unseen cell can be closer.
     Location best;
     best.fallback = true;
     double best_d2 = INFINITY;
     auto visit = [&](int i, int j) {
       if (i < 0 || j < 0 || i >= n_ || j >= n_) return;
-      for (Index k = start_[j * n_ + i]; k < start_[j * n_ + i + 1]; ++k) {
+      for (Index k = start_[cells_.index(i, j)]; k < start_[cells_.index(i, j) + 1]; ++k) {
         const Index t = items_[k];
         const Triangle& tri = triangles_[t];
         const ClosestPoint cp = closest_point(p, net_[tri[0]], net_[tri[1]], net_[tri[2]]);
@@ -90,7 +130,7 @@ class TriangleGrid {
       }
     };
     for (int r = 0; r < n_; ++r) {
-      const double ring_gap = std::max(0, r - 1) * cell_;
+      const double ring_gap = std::max(0, r - 1) * cells_.size();
       if (ring_gap * ring_gap > best_d2) break;
       if (r == 0) {
         visit(pi, pj);
@@ -110,25 +150,10 @@ class TriangleGrid {
   }
 
  private:
-  int clamp_cell(double x) const {
-    if (!(x >= 0)) return 0;
-    return std::min(static_cast<int>(x), n_ - 1);
-  }
-  std::array<int, 4> box(size_t t) const {
-    const Vec2& a = net_[triangles_[t][0]];
-    const Vec2& b = net_[triangles_[t][1]];
-    const Vec2& c = net_[triangles_[t][2]];
-    return {clamp_cell((std::min({a.x(), b.x(), c.x()}) - lo_.x()) / cell_),
-            clamp_cell((std::min({a.y(), b.y(), c.y()}) - lo_.y()) / cell_),
-            clamp_cell((std::max({a.x(), b.x(), c.x()}) - lo_.x()) / cell_),
-            clamp_cell((std::max({a.y(), b.y(), c.y()}) - lo_.y()) / cell_)};
-  }
-
   const Positions2& net_;
   const std::vector<Triangle>& triangles_;
+  const GridCells& cells_;
   int n_;
-  Vec2 lo_;
-  double cell_ = 1;
   std::vector<Index> start_;
   std::vector<Index> items_;
 };
@@ -176,16 +201,56 @@ class NearTriangles {
   std::vector<char> marked_;
 };
 
-// The fallback for the points the image or the walk did not place.
+// The fallback for the points the image or the walk did not place: among the triangles whose
+// bounding box covers the point's cell of a grid over the net, the rule's choice; failing that,
+// the nearest triangle. For a few points (failed walks) the candidates are collected in one pass
+// over the triangles that looks only at the cells holding such points, instead of listing every
+// triangle of every cell (50-60 ms at 490k triangles); that full grid is built for many points,
+// and for a point no triangle holds.
 void locate_missed(const Positions2& points, const Positions2& net,
                    const std::vector<Triangle>& triangles, const std::vector<size_t>& missed,
                    std::vector<Location>& out) {
   if (missed.empty()) return;
-  // About one cell per triangle keeps both the build and each query short.
-  const int cells =
-      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(triangles.size()))), 1, 4096);
-  const TriangleGrid grid(net, triangles, cells);
-  for (size_t k : missed) out[k] = grid.locate(points[k]);
+  // About one cell per triangle keeps each point's candidates few.
+  const GridCells cells(
+      net, std::clamp(static_cast<int>(std::sqrt(static_cast<double>(triangles.size()))), 1, 4096));
+  if (missed.size() * 16 > triangles.size()) {
+    // Many points (an image with triangles smaller than its pixels): every cell is wanted.
+    const TriangleGrid grid(net, triangles, cells);
+    for (size_t k : missed) out[k] = grid.locate(points[k]);
+    return;
+  }
+  std::vector<std::pair<size_t, size_t>> by_cell;  // (cell, position in missed), sorted
+  for (size_t m = 0; m < missed.size(); ++m) {
+    const auto [i, j] = cells.of(points[missed[m]]);
+    by_cell.push_back({cells.index(i, j), m});
+  }
+  std::sort(by_cell.begin(), by_cell.end());
+  std::vector<char> wanted(static_cast<size_t>(cells.n()) * cells.n(), 0);
+  for (const auto& [c, m] : by_cell) wanted[c] = 1;
+  std::vector<std::vector<Index>> candidates(missed.size());  // ascending, as t runs
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const auto [i0, j0, i1, j1] = cells.box(net, triangles[t]);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const size_t c = cells.index(i, j);
+        if (!wanted[c]) continue;
+        for (auto it = std::lower_bound(by_cell.begin(), by_cell.end(), std::pair{c, size_t{0}});
+             it != by_cell.end() && it->first == c; ++it)
+          candidates[it->second].push_back(static_cast<Index>(t));
+      }
+  }
+  std::optional<TriangleGrid> grid;
+  for (size_t m = 0; m < missed.size(); ++m) {
+    const Vec2& p = points[missed[m]];
+    if (auto holder = best_holder(p, net, triangles, candidates[m])) {
+      holder->fallback = true;
+      out[missed[m]] = *holder;
+      continue;
+    }
+    if (!grid) grid.emplace(net, triangles, cells);
+    out[missed[m]] = grid->nearest(p);
+  }
 }
 
 // Where a walk failed (it circled, left the net or met a degenerate triangle), the triangles

@@ -88,6 +88,27 @@ TEST(Locate, TrianglesSmallerThanAPixelAreFoundByTheFallback) {
   EXPECT_GT(fallbacks, 0);
 }
 
+// The fallback lists candidates differently for a few points (only their cells) and for many
+// (every cell): a point gets the same either way, inside the net, on its edges or outside it.
+TEST(Locate, TheFallbackGivesAPointTheSameAloneOrAmongMany) {
+  Net net = grid(40, 0.3, 5);
+  net.points[20 * 41 + 20] += Vec2(2.0 / 40, 1.0 / 40);  // a fold: overlapping triangles
+  const IdImage empty{1, {0}};  // no pixel names a triangle: every point falls back
+  std::mt19937 rng{4};
+  std::uniform_real_distribution<double> u(-0.05, 1.05);
+  Positions2 pts;
+  for (int k = 0; k < 1000; ++k) pts.emplace_back(u(rng), u(rng));
+  for (int k = 0; k <= 40; ++k) pts.push_back(net.points[k * 41 + 7]);  // on nodes and edges
+  ASSERT_GT(pts.size() * 16, net.triangles.size());  // all at once: the whole grid
+  const auto many = locate_points(pts, net.points, net.triangles, empty);
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const Location alone = locate_points({pts[k]}, net.points, net.triangles, empty)[0];
+    EXPECT_EQ(many[k].triangle, alone.triangle) << k;
+    EXPECT_EQ(many[k].weight, alone.weight) << k;
+    EXPECT_TRUE(alone.fallback);
+  }
+}
+
 TEST(Locate, APointOutsideTheNetTakesTheNearestTriangleClamped) {
   const Positions2 net{{0, 0}, {0.5, 0}, {0, 0.5}, {0.9, 0.9}, {1, 0.9}, {0.9, 1}};
   const std::vector<Triangle> tris{{0, 1, 2}, {3, 4, 5}};
