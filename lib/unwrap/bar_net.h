@@ -87,11 +87,14 @@ class FrameNetSolver {
  private:
   BarNet net_;
   FrameNetMethod method_;
-  Positions2 start_;                        // #nodes
-  std::vector<Index> free_id_;              // node -> row of the free system, -1 if fixed
-  std::vector<Index> free_nodes_;           // row -> node
-  SparseMatrix pattern_;                    // K_ff's pattern (values ignored)
-  std::vector<std::array<Index, 4>> slot_;  // per bar: value slots (aa, bb, ab, ba), -1 if none
+  Positions2 start_;               // #nodes
+  std::vector<Index> free_id_;     // node -> row of the free system, -1 if fixed
+  std::vector<Index> free_nodes_;  // row -> node
+  SparseMatrix pattern_;           // K_ff's pattern (values ignored)
+  // Per bar: value slots (aa, bb, ab, ba) in pattern_, -1 if none (Cholesky, CG); for the
+  // multigrid, the same slots in the order of its first level, which a frame's values are
+  // summed into directly.
+  std::vector<std::array<Index, 4>> slot_, level_slot_;
   struct Symbolic;
   std::shared_ptr<const Symbolic> symbolic_;               // K_ff's symbolic factor (Cholesky)
   std::shared_ptr<const AggregationMultigrid> multigrid_;  // its levels (multigrid)

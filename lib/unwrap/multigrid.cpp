@@ -358,15 +358,24 @@ AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
 
 MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b, Mat2& x,
                                             double tolerance, int max_iterations) const {
+  SKINSLIDE_CHECK(
+      A.rows() == levels_.front().rows && A.nonZeros() == static_cast<Index>(value_slot_.size()),
+      "the matrix has the hierarchy's pattern");
+  Vec top_value(value_slot_.size());
+  for (size_t k = 0; k < top_value.size(); ++k) top_value[k] = A.valuePtr()[value_slot_[k]];
+  return solve(top_value, b, x, tolerance, max_iterations);
+}
+
+MultigridResult AggregationMultigrid::solve(const std::vector<double>& level0_values, const Mat2& b,
+                                            Mat2& x, double tolerance, int max_iterations) const {
   const Level& top = levels_.front();
-  SKINSLIDE_CHECK(A.rows() == top.rows && A.nonZeros() == static_cast<Index>(top.column.size()),
-                  "the matrix has the hierarchy's pattern");
+  SKINSLIDE_CHECK(
+      level0_values.size() == top.column.size() && b.rows() == top.rows && x.rows() == top.rows,
+      "values and vectors of the hierarchy's size");
   Numeric N;
   N.levels = &levels_;
   N.value.resize(levels_.size());
-  Vec top_value(value_slot_.size());
-  for (size_t k = 0; k < top_value.size(); ++k) top_value[k] = A.valuePtr()[value_slot_[k]];
-  N.value[0] = top_value.data();
+  N.value[0] = level0_values.data();
   N.coarse_value.resize(levels_.size());
   for (size_t l = 0; l + 1 < levels_.size(); ++l) {
     N.coarse_value[l + 1] =

@@ -33,6 +33,17 @@ class AggregationMultigrid {
                         Eigen::Matrix<double, Eigen::Dynamic, 2>& x, double tolerance,
                         int max_iterations) const;
 
+  /// The same, with A given by its values in the order of level 0's nonzeros (value_slot): a
+  /// caller that assembles A there needs neither A's compressed copy nor the gather from it.
+  MultigridResult solve(const std::vector<double>& level0_values,
+                        const Eigen::Matrix<double, Eigen::Dynamic, 2>& b,
+                        Eigen::Matrix<double, Eigen::Dynamic, 2>& x, double tolerance,
+                        int max_iterations) const;
+
+  /// Level 0's nonzero k holds the nonzero value_slot()[k] of the matrix the hierarchy was
+  /// built from (in its compressed storage); one to one.
+  const std::vector<Index>& value_slot() const { return value_slot_; }
+
   /// Per level: rows and sparsity pattern (compressed rows, columns sorted, the diagonal's
   /// position), and for all but the coarsest the row of the next level each row is summed into
   /// and where each nonzero lands in the next level's values. Level 0 is the matrix with its
