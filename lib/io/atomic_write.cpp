@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace skinslide {
@@ -20,7 +21,9 @@ namespace {
 
 }  // namespace
 
-void write_file_atomic(const std::string& path, std::string_view bytes) {
+constexpr size_t kBufferBytes = size_t{1} << 20;  // pieces are gathered into writes this size
+
+AtomicFile::AtomicFile(const std::string& path) : path_(path) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   std::error_code ec;
@@ -30,23 +33,56 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
   // its name starts with '.' so a glob over the folder does not pick up a half-written file.
   std::string name = ".";
   name.append(target.filename().string()).append(".tmp.XXXXXX");
-  std::string tmpl = (dir / name).string();
-  const int fd = mkstemp(tmpl.data());
-  if (fd < 0) throw_output(path, std::strerror(errno));
-  const char* p = bytes.data();
-  size_t left = bytes.size();
+  temporary_ = (dir / name).string();
+  fd_ = mkstemp(temporary_.data());
+  if (fd_ < 0) throw_output(path, std::strerror(errno));
+  buffer_.reserve(kBufferBytes);
+}
+
+AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    ::unlink(temporary_.c_str());
+  }
+}
+
+void AtomicFile::fail(const std::string& reason) {
+  ::close(fd_);
+  fd_ = -1;
+  ::unlink(temporary_.c_str());
+  throw_output(path_, reason);
+}
+
+void AtomicFile::write_all(const char* p, size_t left) {
   while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
+    const ssize_t n = ::write(fd_, p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
-      const std::string reason = std::strerror(errno);
-      ::close(fd);
-      ::unlink(tmpl.c_str());
-      throw_output(path, reason);
+      fail(std::strerror(errno));
     }
     p += n;
     left -= static_cast<size_t>(n);
   }
+}
+
+void AtomicFile::write(std::string_view bytes) {
+  SKINSLIDE_CHECK(fd_ >= 0, "a file not yet committed");
+  if (buffer_.size() + bytes.size() <= kBufferBytes) {
+    buffer_.append(bytes);
+    return;
+  }
+  write_all(buffer_.data(), buffer_.size());
+  buffer_.clear();
+  if (bytes.size() >= kBufferBytes)
+    write_all(bytes.data(), bytes.size());  // a large piece goes out as it is, uncopied
+  else
+    buffer_.append(bytes);
+}
+
+void AtomicFile::commit() {
+  SKINSLIDE_CHECK(fd_ >= 0, "a file not yet committed");
+  write_all(buffer_.data(), buffer_.size());
+  buffer_.clear();
   // mkstemp creates 0600; outputs get the usual 0666 & ~umask like any other file. umask() can
   // only be read by setting it, and frames are written from several threads: read it once.
   static const mode_t mask = [] {
@@ -54,22 +90,25 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
     ::umask(m);
     return m;
   }();
-  if (::fchmod(fd, 0666 & ~mask) != 0 || ::fsync(fd) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::close(fd);
-    ::unlink(tmpl.c_str());
-    throw_output(path, reason);
-  }
+  if (::fchmod(fd_, 0666 & ~mask) != 0 || ::fsync(fd_) != 0) fail(std::strerror(errno));
+  const int fd = fd_;
+  fd_ = -1;
   if (::close(fd) != 0) {
     const std::string reason = std::strerror(errno);
-    ::unlink(tmpl.c_str());
-    throw_output(path, reason);
+    ::unlink(temporary_.c_str());
+    throw_output(path_, reason);
   }
-  if (std::rename(tmpl.c_str(), path.c_str()) != 0) {
+  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
-    ::unlink(tmpl.c_str());
-    throw_output(path, reason);
+    ::unlink(temporary_.c_str());
+    throw_output(path_, reason);
   }
+}
+
+void write_file_atomic(const std::string& path, std::string_view bytes) {
+  AtomicFile file(path);
+  file.write(bytes);
+  file.commit();
 }
 
 void sync_folder(const std::string& folder) {

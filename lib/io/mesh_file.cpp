@@ -68,7 +68,7 @@ void write_slid_mesh_file(const MeshFile& frame, const SlidVertices& slid,
                           const std::string& out_path) {
   if (frame.gltf) return write_gltf_file(frame, slid, out_path);
   Positions3 positions = apply_slide(frame.mesh.positions, slid);
-  write_file_atomic(out_path, rewrite_obj(*frame.obj, frame.mesh.positions, positions));
+  write_rewritten_obj(out_path, *frame.obj, frame.mesh.positions, positions);
 }
 
 }  // namespace skinslide

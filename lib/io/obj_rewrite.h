@@ -15,4 +15,10 @@ namespace skinslide {
 std::string rewrite_obj(const ObjText& obj, const Positions3& original,
                         const Positions3& positions);
 
+/// The same text written to `path` as it is made (through AtomicFile: complete or not at all),
+/// without holding it whole in memory: at 1M vertices that is about 100 MB less per frame.
+/// \throw Error(Output) naming `path` when it cannot be written.
+void write_rewritten_obj(const std::string& path, const ObjText& obj, const Positions3& original,
+                         const Positions3& positions);
+
 }  // namespace skinslide

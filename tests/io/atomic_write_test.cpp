@@ -21,6 +21,38 @@ TEST(AtomicWrite, WritesReplacesAndLeavesNoTemporary) {
   EXPECT_EQ(files, 1);
 }
 
+// Pieces below, at and above the buffer's size (1 MiB) come out in order, byte for byte; the
+// old file stays until commit, and an abandoned file leaves nothing behind.
+TEST(AtomicWrite, AFileWrittenInPiecesAppearsWholeOnlyOnCommit) {
+  namespace fs = std::filesystem;
+  const std::string dir = test::temp_dir("atomic_pieces");
+  const std::string path = dir + "/out.obj";
+  write_file_atomic(path, "old");
+  std::string expected;
+  {
+    AtomicFile file(path);
+    for (size_t size : {size_t{1}, size_t{1000}, size_t{1} << 20, size_t{3}, (size_t{1} << 20) + 7,
+                        size_t{700000}, size_t{700000}}) {
+      std::string piece(size, '\0');
+      for (size_t i = 0; i < size; ++i)
+        piece[i] = static_cast<char>('a' + (expected.size() + i) % 26);
+      expected += piece;
+      file.write(piece);
+      EXPECT_EQ(read_file(path), "old");
+    }
+    file.commit();
+  }
+  EXPECT_EQ(read_file(path), expected);
+  {
+    AtomicFile abandoned(path);
+    abandoned.write("never");
+  }
+  EXPECT_EQ(read_file(path), expected);
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1);
+}
+
 TEST(AtomicWrite, SyncingAFolderWorksOnAFolderAndNamesAMissingOne) {
   const std::string dir = test::temp_dir("atomic_sync");
   write_file_atomic(dir + "/a.obj", "a");
