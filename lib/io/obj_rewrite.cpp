@@ -32,21 +32,8 @@ void rewrite(const ObjText& obj, const Positions3& original, const Positions3& p
 
 std::string rewrite_obj(const ObjText& obj, const Positions3& original,
                         const Positions3& positions) {
-  // Reserved for the longest numbers the changed coordinates can take (shortest round-trip
-  // text of a double: at most 24 characters): growing by doubling would hold the old buffer and
-  // one of twice its size at once.
-  constexpr std::uint64_t kLongestDouble = 24;
-  std::uint64_t bound = obj.bytes.size();
-  for (size_t v = 0; v < positions.size() && v < obj.coordinate_spans.size(); ++v) {
-    if (positions[v] == original[v]) continue;
-    const auto& span = obj.coordinate_spans[v];
-    for (int k = 0; k < 3; ++k) {
-      const std::uint64_t length = span[2 * k + 1] - span[2 * k];
-      if (length < kLongestDouble) bound += kLongestDouble - length;
-    }
-  }
   std::string out;
-  out.reserve(bound);
+  out.reserve(obj.bytes.size());
   rewrite(obj, original, positions, [&](std::string_view piece) { out.append(piece); });
   return out;
 }

@@ -12,6 +12,8 @@ namespace skinslide {
 /// differs from `original` replaced by the shortest round-trip text of the new value.
 /// Spacing, extra numbers (w, colours), comments, other statements and line endings are kept,
 /// so a diff shows only what moved. \pre positions.size() == original.size() == vertex count.
+/// Held whole in memory (the tests and the fuzzer read it back); frames are written by
+/// write_rewritten_obj.
 std::string rewrite_obj(const ObjText& obj, const Positions3& original,
                         const Positions3& positions);
 
