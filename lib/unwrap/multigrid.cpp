@@ -16,9 +16,13 @@ namespace {
 using Level = AggregationMultigrid::Level;
 using Mat2 = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 
-// Vectors hold the two columns interleaved (x0 y0 x1 y1 ...): a row's two values share a cache
-// line.
-using Vec = std::vector<double>;
+// Matrix values, one per nonzero of a level.
+using Values = std::vector<double>;
+// A row's x and y side by side, added and multiplied lane by lane: one instruction does what the
+// two columns did one after the other, with the same roundings in the same order (no fused
+// multiply-add), so the bits are those of the two scalar columns.
+using Pair = double __attribute__((vector_size(16)));
+using Vec = std::vector<Pair>;
 
 constexpr Index kCoarsestRows = 200;      // solved by a sparse factorisation
 constexpr double kStrongCoupling = 0.25;  // a neighbour is strong at >= 1/4 of the row's largest
@@ -32,7 +36,7 @@ constexpr double kStallReduction = 10.0;
 // Pairs each row with its strongest unpaired neighbour among those coupled at least `strong`
 // times as strongly as the row's strongest, in row order (deterministic). Returns the pair index
 // of every row and the number of pairs (singletons count as pairs of one).
-Index pair_rows(const Level& level, const Vec& value, double strong, std::vector<Index>& pair) {
+Index pair_rows(const Level& level, const Values& value, double strong, std::vector<Index>& pair) {
   const Index n = level.rows;
   pair.assign(n, -1);
   Index pairs = 0;
@@ -108,52 +112,31 @@ Level coarse_level(const Level& fine, const std::vector<Index>& aggregate, Index
 }
 
 // The values of P^T A P: each fine value summed into its slot.
-Vec coarse_values(const std::vector<Index>& slot, const double* value, size_t coarse_nonzeros) {
-  Vec out(coarse_nonzeros, 0.0);
+Values coarse_values(const std::vector<Index>& slot, const double* value, size_t coarse_nonzeros) {
+  Values out(coarse_nonzeros, 0.0);
   for (size_t k = 0; k < slot.size(); ++k) out[slot[k]] += value[k];
   return out;
 }
 
 // Both columns' dot products in one pass.
-using Two = std::array<double, 2>;
-Two dot(const Vec& a, const Vec& b) {
-  Two s{0, 0};
-  for (size_t i = 0; i < a.size(); i += 2) {
-    s[0] += a[i] * b[i];
-    s[1] += a[i + 1] * b[i + 1];
-  }
+Pair dot(const Vec& a, const Vec& b) {
+  Pair s{0, 0};
+  for (size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
   return s;
 }
 
 // y = A x; returns x.y per column, summed in the same pass.
-Two multiply(const Level& L, const double* A, const Vec& x, Vec& y) {
-  Two xy{0, 0};
+Pair multiply(const Level& L, const double* A, const Vec& x, Vec& y) {
+  const Index* start = L.start.data();
+  const Index* column = L.column.data();
+  Pair xy{0, 0};
   for (Index i = 0; i < L.rows; ++i) {
-    double s0 = 0, s1 = 0;
-    for (Index k = L.start[i]; k < L.start[i + 1]; ++k) {
-      const Index j = L.column[k];
-      s0 += A[k] * x[2 * j];
-      s1 += A[k] * x[2 * j + 1];
-    }
-    y[2 * i] = s0;
-    y[2 * i + 1] = s1;
-    xy[0] += x[2 * i] * s0;
-    xy[1] += x[2 * i + 1] * s1;
+    Pair s{0, 0};
+    for (Index k = start[i]; k < start[i + 1]; ++k) s += A[k] * x[column[k]];
+    y[i] = s;
+    xy += x[i] * s;
   }
   return xy;
-}
-
-void relax_row(const Level& L, const double* A, const Vec& inverse_diagonal, const Vec& b, Vec& x,
-               Index i) {
-  double s0 = b[2 * i], s1 = b[2 * i + 1];
-  for (Index k = L.start[i]; k < L.start[i + 1]; ++k) {
-    const Index j = L.column[k];
-    s0 -= A[k] * x[2 * j];
-    s1 -= A[k] * x[2 * j + 1];
-  }
-  const double d = inverse_diagonal[i];
-  x[2 * i] += s0 * d;
-  x[2 * i + 1] += s1 * d;
 }
 
 // The per-solve values: every level's matrix, the coarsest level's factor, and work vectors.
@@ -161,8 +144,8 @@ void relax_row(const Level& L, const double* A, const Vec& inverse_diagonal, con
 struct Numeric {
   const std::vector<Level>* levels;
   std::vector<const double*> value;  // level 0: the caller's matrix; below: coarse_value
-  std::vector<Vec> coarse_value;
-  std::vector<Vec> inverse_diagonal;  // a sweep multiplies: a division would lengthen the chain
+  std::vector<Values> coarse_value;
+  std::vector<Values> inverse_diagonal;  // a sweep multiplies: a division would lengthen the chain
   Eigen::SimplicialLDLT<SparseMatrix> coarsest;
   struct Work {
     Vec rc, zc;              // kcycle: the restricted residual and its correction (next level)
@@ -173,6 +156,13 @@ struct Numeric {
 
 void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z);
 
+// Per column: a / b where b > 0, else 0.
+Pair ratio_where_positive(Pair a, Pair b) {
+  Pair out{0, 0};
+  for (int c = 0; c < 2; ++c) out[c] = b[c] > 0 ? a[c] / b[c] : 0.0;
+  return out;
+}
+
 // Approximates the solution of A_l zc = rc by two steps of flexible CG preconditioned by the
 // next K-cycle (one when the first already reduces the residual enough).
 void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
@@ -181,47 +171,36 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
   Numeric::Work& w = N.work[l];
   const size_t n = rc.size();
   kcycle(N, l, rc, w.c1);
-  const Two rho1 = multiply(C, A, w.c1, w.v1);
-  const Two alpha1 = dot(w.c1, rc);
-  Two t1{0, 0};
-  for (int c = 0; c < 2; ++c) t1[c] = rho1[c] > 0 ? alpha1[c] / rho1[c] : 0.0;
-  Two r2norm{0, 0}, rcnorm{0, 0};
+  const Pair rho1 = multiply(C, A, w.c1, w.v1);
+  const Pair alpha1 = dot(w.c1, rc);
+  const Pair t1 = ratio_where_positive(alpha1, rho1);
+  Pair r2norm{0, 0}, rcnorm{0, 0};
   w.r2.resize(n);
-  for (size_t i = 0; i < n; i += 2) {
-    w.r2[i] = rc[i] - t1[0] * w.v1[i];
-    w.r2[i + 1] = rc[i + 1] - t1[1] * w.v1[i + 1];
-    r2norm[0] += w.r2[i] * w.r2[i];
-    r2norm[1] += w.r2[i + 1] * w.r2[i + 1];
-    rcnorm[0] += rc[i] * rc[i];
-    rcnorm[1] += rc[i + 1] * rc[i + 1];
+  for (size_t i = 0; i < n; ++i) {
+    w.r2[i] = rc[i] - t1 * w.v1[i];
+    r2norm += w.r2[i] * w.r2[i];
+    rcnorm += rc[i] * rc[i];
   }
   const double enough = kInnerReduction * kInnerReduction;
   if (r2norm[0] <= enough * rcnorm[0] && r2norm[1] <= enough * rcnorm[1]) {
-    for (size_t i = 0; i < n; i += 2) {
-      zc[i] = t1[0] * w.c1[i];
-      zc[i + 1] = t1[1] * w.c1[i + 1];
-    }
+    for (size_t i = 0; i < n; ++i) zc[i] = t1 * w.c1[i];
     return;
   }
   kcycle(N, l, w.r2, w.c2);
-  const Two beta = multiply(C, A, w.c2, w.v2);
-  Two gamma{0, 0}, alpha2{0, 0};
-  for (size_t i = 0; i < n; i += 2)
-    for (int c = 0; c < 2; ++c) {
-      gamma[c] += w.c2[i + c] * w.v1[i + c];
-      alpha2[c] += w.c2[i + c] * w.r2[i + c];
-    }
-  Two f1{0, 0}, f2{0, 0};
+  const Pair beta = multiply(C, A, w.c2, w.v2);
+  Pair gamma{0, 0}, alpha2{0, 0};
+  for (size_t i = 0; i < n; ++i) {
+    gamma += w.c2[i] * w.v1[i];
+    alpha2 += w.c2[i] * w.r2[i];
+  }
+  Pair f1{0, 0}, f2{0, 0};
   for (int c = 0; c < 2; ++c) {
     if (!(rho1[c] > 0)) continue;
     const double rho2 = beta[c] - gamma[c] * gamma[c] / rho1[c];
     f1[c] = rho2 > 0 ? t1[c] - gamma[c] * alpha2[c] / (rho1[c] * rho2) : t1[c];
     f2[c] = rho2 > 0 ? alpha2[c] / rho2 : 0.0;
   }
-  for (size_t i = 0; i < n; i += 2) {
-    zc[i] = f1[0] * w.c1[i] + f2[0] * w.c2[i];
-    zc[i + 1] = f1[1] * w.c1[i + 1] + f2[1] * w.c2[i + 1];
-  }
+  for (size_t i = 0; i < n; ++i) zc[i] = f1 * w.c1[i] + f2 * w.c2[i];
 }
 
 // z = an approximation of A_l^{-1} r: forward Gauss-Seidel from zero, coarse correction, backward
@@ -232,48 +211,40 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
   const double* A = N.value[l];
   if (l + 1 == levels.size()) {
     Mat2 rhs(L.rows, 2);
-    for (Index i = 0; i < L.rows; ++i) rhs.row(i) << r[2 * i], r[2 * i + 1];
+    for (Index i = 0; i < L.rows; ++i) rhs.row(i) << r[i][0], r[i][1];
     const Mat2 sol = N.coarsest.solve(rhs);
-    for (Index i = 0; i < L.rows; ++i) {
-      z[2 * i] = sol(i, 0);
-      z[2 * i + 1] = sol(i, 1);
-    }
+    for (Index i = 0; i < L.rows; ++i) z[i] = Pair{sol(i, 0), sol(i, 1)};
     return;
   }
+  const Index* start = L.start.data();
+  const Index* column = L.column.data();
+  const Index* diagonal = L.diagonal.data();
+  const Index* aggregate = L.aggregate.data();
+  const double* inverse_diagonal = N.inverse_diagonal[l].data();
   // From zero, the forward sweep reads only the strictly lower part, and afterwards row i's
   // residual is what the strictly upper part takes: -sum_{j>i} a_ij z_j. Both are half a pass.
   for (Index i = 0; i < L.rows; ++i) {
-    double s0 = r[2 * i], s1 = r[2 * i + 1];
-    for (Index k = L.start[i]; k < L.diagonal[i]; ++k) {
-      const Index j = L.column[k];
-      s0 -= A[k] * z[2 * j];
-      s1 -= A[k] * z[2 * j + 1];
-    }
-    const double d = N.inverse_diagonal[l][i];
-    z[2 * i] = s0 * d;
-    z[2 * i + 1] = s1 * d;
+    Pair s = r[i];
+    for (Index k = start[i]; k < diagonal[i]; ++k) s -= A[k] * z[column[k]];
+    z[i] = s * inverse_diagonal[i];
   }
   Numeric::Work& w = N.work[l];
-  std::fill(w.rc.begin(), w.rc.end(), 0.0);
+  std::fill(w.rc.begin(), w.rc.end(), Pair{0, 0});
   for (Index i = 0; i < L.rows; ++i) {
-    double s0 = 0, s1 = 0;
-    for (Index k = L.diagonal[i] + 1; k < L.start[i + 1]; ++k) {
-      const Index j = L.column[k];
-      s0 -= A[k] * z[2 * j];
-      s1 -= A[k] * z[2 * j + 1];
-    }
-    w.rc[2 * L.aggregate[i]] += s0;
-    w.rc[2 * L.aggregate[i] + 1] += s1;
+    Pair s{0, 0};
+    for (Index k = diagonal[i] + 1; k < start[i + 1]; ++k) s -= A[k] * z[column[k]];
+    w.rc[aggregate[i]] += s;
   }
   if (l + 2 == levels.size())
     kcycle(N, l + 1, w.rc, w.zc);
   else
     coarse_correction(N, l + 1, w.rc, w.zc);
-  for (Index i = 0; i < L.rows; ++i) {
-    z[2 * i] += w.zc[2 * L.aggregate[i]];
-    z[2 * i + 1] += w.zc[2 * L.aggregate[i] + 1];
+  for (Index i = 0; i < L.rows; ++i) z[i] += w.zc[aggregate[i]];
+  for (Index i = L.rows; i-- > 0;) {
+    Pair s = r[i];
+    for (Index k = start[i]; k < start[i + 1]; ++k) s -= A[k] * z[column[k]];
+    z[i] += s * inverse_diagonal[i];
   }
-  for (Index i = L.rows; i-- > 0;) relax_row(L, A, N.inverse_diagonal[l], r, z, i);
 }
 
 // The top level's sweep order: kStrands stretches of the rows interleaved. Consecutive rows of a
@@ -327,7 +298,7 @@ AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
   SKINSLIDE_CHECK(A.rows() == A.cols() && A.isCompressed(), "a square compressed matrix");
   order_ = interleaved_order(static_cast<Index>(A.rows()));
   levels_.push_back(permuted_pattern(A, order_, value_slot_));
-  Vec value(value_slot_.size());
+  Values value(value_slot_.size());
   for (size_t k = 0; k < value.size(); ++k) value[k] = A.valuePtr()[value_slot_[k]];
   // Each level pairs twice (aggregates of up to four rows) until the coarsest is small. Where
   // strong couplings leave too many rows unpaired (couplings that jump by orders of magnitude),
@@ -341,7 +312,7 @@ AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
       std::vector<Index> first_pair, second_pair, mid_slot;
       const Index pairs = pair_rows(fine, value, strong, first_pair);
       const Level mid = coarse_level(fine, first_pair, pairs, mid_slot);
-      const Vec mid_value = coarse_values(mid_slot, value.data(), mid.column.size());
+      const Values mid_value = coarse_values(mid_slot, value.data(), mid.column.size());
       quads = pair_rows(mid, mid_value, strong, second_pair);
       for (Index i = 0; i < fine.rows; ++i) aggregate[i] = second_pair[first_pair[i]];
       if (quads * 3 <= fine.rows * 2) break;  // at least 1.5x coarser
@@ -361,7 +332,7 @@ MultigridResult AggregationMultigrid::solve(const SparseMatrix& A, const Mat2& b
   SKINSLIDE_CHECK(
       A.rows() == levels_.front().rows && A.nonZeros() == static_cast<Index>(value_slot_.size()),
       "the matrix has the hierarchy's pattern");
-  Vec top_value(value_slot_.size());
+  Values top_value(value_slot_.size());
   for (size_t k = 0; k < top_value.size(); ++k) top_value[k] = A.valuePtr()[value_slot_[k]];
   return solve(top_value, b, x, tolerance, max_iterations);
 }
@@ -400,28 +371,26 @@ MultigridResult AggregationMultigrid::solve(const std::vector<double>& level0_va
   }
   N.work.resize(levels_.size());
   for (size_t l = 0; l < levels_.size(); ++l) {
-    const size_t n = 2 * static_cast<size_t>(levels_[l].rows);
+    const size_t n = static_cast<size_t>(levels_[l].rows);
     Numeric::Work& w = N.work[l];
     if (l + 1 < levels_.size()) {
-      w.rc.resize(2 * static_cast<size_t>(levels_[l + 1].rows));
+      w.rc.resize(static_cast<size_t>(levels_[l + 1].rows));
       w.zc.resize(w.rc.size());
     }
     if (l > 0) {
       w.c1.resize(n), w.v1.resize(n), w.c2.resize(n), w.v2.resize(n);
     }
   }
-  const size_t n = 2 * static_cast<size_t>(top.rows);
+  const size_t n = static_cast<size_t>(top.rows);
   Vec xv(n), bv(n), r(n), z(n), p(n), q(n);
   for (Index i = 0; i < top.rows; ++i) {
-    xv[2 * i] = x(order_[i], 0);
-    xv[2 * i + 1] = x(order_[i], 1);
-    bv[2 * i] = b(order_[i], 0);
-    bv[2 * i + 1] = b(order_[i], 1);
+    xv[i] = Pair{x(order_[i], 0), x(order_[i], 1)};
+    bv[i] = Pair{b(order_[i], 0), b(order_[i], 1)};
   }
   multiply(top, N.value[0], xv, r);
   for (size_t i = 0; i < n; ++i) r[i] = bv[i] - r[i];
-  const Two bb = dot(bv, bv);
-  Two rr = dot(r, r), pq_previous{0, 0};
+  const Pair bb = dot(bv, bv);
+  Pair rr = dot(r, r), pq_previous{0, 0};
   MultigridResult out;
   std::vector<double> history;  // the worse column's relative residual per iteration
   for (int it = 0;; ++it) {
@@ -444,27 +413,22 @@ MultigridResult AggregationMultigrid::solve(const std::vector<double>& level0_va
     kcycle(N, 0, r, z);
     // Flexible CG: p is made A-orthogonal to the previous p (the K-cycle is not a fixed linear
     // operator). A converged column keeps its x and r.
-    const Two zq = it > 0 ? dot(z, q) : Two{0, 0};
-    Two beta{0, 0};
-    for (int c = 0; c < 2; ++c) beta[c] = pq_previous[c] > 0 ? -zq[c] / pq_previous[c] : 0.0;
-    for (size_t i = 0; i < n; i += 2) {
-      p[i] = z[i] + beta[0] * p[i];
-      p[i + 1] = z[i + 1] + beta[1] * p[i + 1];
-    }
-    const Two pq = multiply(top, N.value[0], p, q);
-    const Two pr = dot(p, r);
-    Two alpha{0, 0};
+    const Pair zq = it > 0 ? dot(z, q) : Pair{0, 0};
+    const Pair beta = ratio_where_positive(-zq, pq_previous);
+    for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
+    const Pair pq = multiply(top, N.value[0], p, q);
+    const Pair pr = dot(p, r);
+    Pair alpha{0, 0};
     for (int c = 0; c < 2; ++c) alpha[c] = active[c] && pq[c] > 0 ? pr[c] / pq[c] : 0.0;
     pq_previous = pq;
-    rr = {0, 0};
-    for (size_t i = 0; i < n; i += 2)
-      for (int c = 0; c < 2; ++c) {
-        xv[i + c] += alpha[c] * p[i + c];
-        r[i + c] -= alpha[c] * q[i + c];
-        rr[c] += r[i + c] * r[i + c];
-      }
+    rr = Pair{0, 0};
+    for (size_t i = 0; i < n; ++i) {
+      xv[i] += alpha * p[i];
+      r[i] -= alpha * q[i];
+      rr += r[i] * r[i];
+    }
   }
-  for (Index i = 0; i < top.rows; ++i) x.row(order_[i]) << xv[2 * i], xv[2 * i + 1];
+  for (Index i = 0; i < top.rows; ++i) x.row(order_[i]) << xv[i][0], xv[i][1];
   return out;
 }
 
