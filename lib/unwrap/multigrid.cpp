@@ -125,18 +125,22 @@ Pair dot(const Vec& a, const Vec& b) {
   return s;
 }
 
-// y = A x; returns x.y per column, summed in the same pass.
-Pair multiply(const Level& L, const double* A, const Vec& x, Vec& y) {
+// y = A x. Returns x.y per column, then x.u for each u in `also`, summed in the same pass and
+// in the same order as dot() sums them: one pass over x where separate products would take more.
+template <size_t K = 0>
+std::array<Pair, K + 1> multiply(const Level& L, const double* A, const Vec& x, Vec& y,
+                                 const std::array<const Vec*, K>& also = {}) {
   const Index* start = L.start.data();
   const Index* column = L.column.data();
-  Pair xy{0, 0};
+  std::array<Pair, K + 1> sums{};
   for (Index i = 0; i < L.rows; ++i) {
     Pair s{0, 0};
     for (Index k = start[i]; k < start[i + 1]; ++k) s += A[k] * x[column[k]];
     y[i] = s;
-    xy += x[i] * s;
+    sums[0] += x[i] * s;
+    for (size_t u = 0; u < K; ++u) sums[u + 1] += x[i] * (*also[u])[i];
   }
-  return xy;
+  return sums;
 }
 
 // The per-solve values: every level's matrix, the coarsest level's factor, and work vectors.
@@ -171,8 +175,7 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
   Numeric::Work& w = N.work[l];
   const size_t n = rc.size();
   kcycle(N, l, rc, w.c1);
-  const Pair rho1 = multiply(C, A, w.c1, w.v1);
-  const Pair alpha1 = dot(w.c1, rc);
+  const auto [rho1, alpha1] = multiply<1>(C, A, w.c1, w.v1, {&rc});
   const Pair t1 = ratio_where_positive(alpha1, rho1);
   Pair r2norm{0, 0}, rcnorm{0, 0};
   w.r2.resize(n);
@@ -187,12 +190,7 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
     return;
   }
   kcycle(N, l, w.r2, w.c2);
-  const Pair beta = multiply(C, A, w.c2, w.v2);
-  Pair gamma{0, 0}, alpha2{0, 0};
-  for (size_t i = 0; i < n; ++i) {
-    gamma += w.c2[i] * w.v1[i];
-    alpha2 += w.c2[i] * w.r2[i];
-  }
+  const auto [beta, gamma, alpha2] = multiply<2>(C, A, w.c2, w.v2, {&w.v1, &w.r2});
   Pair f1{0, 0}, f2{0, 0};
   for (int c = 0; c < 2; ++c) {
     if (!(rho1[c] > 0)) continue;
@@ -416,8 +414,7 @@ MultigridResult AggregationMultigrid::solve(const std::vector<double>& level0_va
     const Pair zq = it > 0 ? dot(z, q) : Pair{0, 0};
     const Pair beta = ratio_where_positive(-zq, pq_previous);
     for (size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
-    const Pair pq = multiply(top, N.value[0], p, q);
-    const Pair pr = dot(p, r);
+    const auto [pq, pr] = multiply<1>(top, N.value[0], p, q, {&r});
     Pair alpha{0, 0};
     for (int c = 0; c < 2; ++c) alpha[c] = active[c] && pq[c] > 0 ? pr[c] / pq[c] : 0.0;
     pq_previous = pq;
