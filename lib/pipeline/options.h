@@ -31,12 +31,12 @@ enum class FrameSolver {
 };
 
 /// Where Auto switches to Multigrid: the frame system's free nodes. A factorisation grows as
-/// n^1.5 and a multigrid solve as n. On the benchmark's nets, with huge pages, a frame costs the
-/// same near 40-46k free nodes (medians of four: 36.7k Cholesky 27.7 ms, multigrid 28.4; 46.3k
-/// 41.2 and 40.4; 52.9k 46.8 and 39.3; 65.3k 70.1 and 60.7), and the multigrid's set-up, with no
-/// ordering, is 2-3x shorter (36.7k: 190 against 82 ms). Without huge pages the frames cross
-/// near 60k, where the switch was before.
-constexpr int kMultigridFreeNodes = 40000;
+/// n^1.5 and a multigrid solve as n. With the multigrid's two-lane sweeps, on the benchmark's nets
+/// a frame costs the same near 20k free nodes (frame net, Cholesky against multigrid, four
+/// interleaved runs each: 13.3k 12.2 / 13.5 ms, 17.9k 18.6 / 19.3, 27.3k 32.4 / 30.8, 36.8k
+/// 51.2 / 44.5 on a loaded machine), and the multigrid's set-up, with no ordering, is 2-2.5x
+/// shorter (17.9k: 125 against 56 ms). The switch was at 40k before those sweeps.
+constexpr int kMultigridFreeNodes = 20000;
 
 /// How each free vertex's bind-net point is found in the frame net (the same rule for picking
 /// among the triangles that hold it; README "The method, exactly", 7).
