@@ -26,7 +26,7 @@ using Vec = std::vector<Pair>;
 
 constexpr Index kCoarsestRows = 200;      // solved by a sparse factorisation
 constexpr double kStrongCoupling = 0.25;  // a neighbour is strong at >= 1/4 of the row's largest
-constexpr double kInnerReduction = 0.25;  // K-cycle: one inner iteration suffices below this
+constexpr double kInnerReduction = 0.5;  // K-cycle: one inner iteration suffices below this
 // Stagnation: a solve gives up when kStallWindow iterations cut the residual by less than
 // kStallReduction. A frame net takes 14-28 iterations in all; nets whose densities jump by
 // many orders of magnitude between neighbours can take hundreds.
