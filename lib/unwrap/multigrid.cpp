@@ -26,7 +26,7 @@ using Vec = std::vector<Pair>;
 
 constexpr Index kCoarsestRows = 200;      // solved by a sparse factorisation
 constexpr double kStrongCoupling = 0.25;  // a neighbour is strong at >= 1/4 of the row's largest
-constexpr double kInnerReduction = 0.5;  // K-cycle: one inner iteration suffices below this
+constexpr double kInnerReduction = 0.5;   // K-cycle: one inner iteration suffices below this
 // Stagnation: a solve gives up when kStallWindow iterations cut the residual by less than
 // kStallReduction. A frame net takes 14-28 iterations in all; nets whose densities jump by
 // many orders of magnitude between neighbours can take hundreds.
@@ -245,19 +245,60 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
   }
 }
 
-// The top level's sweep order: kStrands stretches of the rows interleaved. Consecutive rows of a
-// sweep are then rarely neighbours, so the processor overlaps the chains of dependent updates
-// that a mesh-ordered sweep runs one after another.
-constexpr Index kStrands = 4;
-std::vector<Index> interleaved_order(Index n) {
-  std::array<Index, kStrands + 1> bound{};
-  for (Index s = 0; s <= kStrands; ++s)
-    bound[s] = static_cast<Index>(static_cast<std::int64_t>(n) * s / kStrands);
-  std::vector<Index> order;
+// The top level's sweep order: A's rows in Cuthill-McKee order, breadth first from a far end of
+// the net, neighbours by ascending degree (ties by row). The sweeps then cross the net as a
+// front, whatever order the file had its vertices in: a row's neighbours are near it in memory,
+// most rows have as many neighbours before them as the row before (the loops exit where the
+// processor predicts), and Gauss-Seidel along a front smooths better than along the file's
+// order (8.8k free vertices in grid order: 22 -> 17 iterations; the same shuffled: 14.8 -> 7.5
+// ms a frame). Components one after another, each from the far end of its lowest row.
+std::vector<Index> cuthill_mckee_order(const SparseMatrix& A) {
+  const Index n = static_cast<Index>(A.rows());
+  const Index* start = A.outerIndexPtr();
+  const Index* row = A.innerIndexPtr();
+  auto degree = [&](Index i) { return start[i + 1] - start[i]; };
+  std::vector<Index> order, level(n, -1), neighbours;
   order.reserve(n);
-  for (Index pos = 0; static_cast<Index>(order.size()) < n; ++pos)
-    for (Index s = 0; s < kStrands; ++s)
-      if (bound[s] + pos < bound[s + 1]) order.push_back(bound[s] + pos);
+  // Breadth-first from `root` over the unvisited rows, appending them to `order`; returns the
+  // position in `order` where this search began.
+  auto search = [&](Index root) {
+    const size_t begin = order.size();
+    level[root] = 0;
+    order.push_back(root);
+    for (size_t head = begin; head < order.size(); ++head) {
+      const Index i = order[head];
+      neighbours.clear();
+      for (Index k = start[i]; k < start[i + 1]; ++k)
+        if (level[row[k]] < 0) {
+          level[row[k]] = level[i] + 1;
+          neighbours.push_back(row[k]);
+        }
+      std::sort(neighbours.begin(), neighbours.end(), [&](Index a, Index b) {
+        return degree(a) != degree(b) ? degree(a) < degree(b) : a < b;
+      });
+      order.insert(order.end(), neighbours.begin(), neighbours.end());
+    }
+    return begin;
+  };
+  // Undoes a search: its rows become unvisited again.
+  auto forget = [&](size_t begin) {
+    for (size_t k = begin; k < order.size(); ++k) level[order[k]] = -1;
+    order.resize(begin);
+  };
+  for (Index first = 0; first < n; ++first) {
+    if (level[first] >= 0) continue;
+    // A far end of the component: the last row of a search from its lowest row, the
+    // lowest-degree row of the deepest level breaking ties (George & Liu's first step).
+    size_t begin = search(first);
+    Index root = order.back();
+    for (size_t k = begin; k < order.size(); ++k)
+      if (level[order[k]] == level[order.back()] &&
+          (degree(order[k]) < degree(root) ||
+           (degree(order[k]) == degree(root) && order[k] < root)))
+        root = order[k];
+    forget(begin);
+    search(root);
+  }
   return order;
 }
 
@@ -294,7 +335,7 @@ Level permuted_pattern(const SparseMatrix& A, const std::vector<Index>& order,
 
 AggregationMultigrid::AggregationMultigrid(const SparseMatrix& A) {
   SKINSLIDE_CHECK(A.rows() == A.cols() && A.isCompressed(), "a square compressed matrix");
-  order_ = interleaved_order(static_cast<Index>(A.rows()));
+  order_ = cuthill_mckee_order(A);
   levels_.push_back(permuted_pattern(A, order_, value_slot_));
   Values value(value_slot_.size());
   for (size_t k = 0; k < value.size(); ++k) value[k] = A.valuePtr()[value_slot_[k]];

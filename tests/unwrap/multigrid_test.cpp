@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -86,6 +87,53 @@ TEST(AggregationMultigrid, EachLevelSumsAggregatesOfTheOneAbove) {
     for (Index c = 0; c < coarse.rows; ++c) EXPECT_EQ(coarse.column[coarse.diagonal[c]], c);
   }
   EXPECT_LE(mg.level(mg.levels() - 1).rows, 200);
+}
+
+// A's rows and columns renumbered: row i of A is row new_id[i] of the result.
+SparseMatrix renumbered(const SparseMatrix& A, const std::vector<Index>& new_id) {
+  std::vector<Triplet> t;
+  for (Index c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it)
+      t.emplace_back(new_id[it.row()], new_id[it.col()], it.value());
+  SparseMatrix B(A.rows(), A.cols());
+  B.setFromTriplets(t.begin(), t.end());
+  B.makeCompressed();
+  return B;
+}
+
+// Level 0's bandwidth: how far apart in the sweep two coupled rows can be.
+Index sweep_bandwidth(const AggregationMultigrid& mg) {
+  const auto& top = mg.level(0);
+  Index width = 0;
+  for (Index i = 0; i < top.rows; ++i)
+    for (Index k = top.start[i]; k < top.start[i + 1]; ++k)
+      width = std::max(width, std::abs(top.column[k] - i));
+  return width;
+}
+
+TEST(AggregationMultigrid, SweepsCrossTheNetAsAFrontWhateverTheNodeOrder) {
+  const int n = 60;
+  const SparseMatrix A = random_grid(n, 11);
+  std::vector<Index> shuffle(A.rows());
+  for (Index i = 0; i < A.rows(); ++i) shuffle[i] = i;
+  std::shuffle(shuffle.begin(), shuffle.end(), std::mt19937{12});
+  const SparseMatrix B = renumbered(A, shuffle);
+  const AggregationMultigrid grid_order(A), shuffled(B);
+  // Breadth first from a corner, a front of an n x n grid holds at most n + 1 rows, and coupled
+  // rows are at most two fronts apart; the shuffled numbering alone has coupled rows thousands
+  // of rows apart.
+  EXPECT_LE(sweep_bandwidth(grid_order), 2 * (n + 1));
+  EXPECT_LE(sweep_bandwidth(shuffled), 2 * (n + 1));
+  // And the solve does not depend on the numbering beyond a tie or two.
+  const Mat2 b = random_rhs(A.rows(), 13);
+  Mat2 b_shuffled(b.rows(), 2), x = Mat2::Zero(b.rows(), 2), y = Mat2::Zero(b.rows(), 2);
+  for (Index i = 0; i < A.rows(); ++i) b_shuffled.row(shuffle[i]) = b.row(i);
+  const MultigridResult ra = grid_order.solve(A, b, x, 1e-12, 200);
+  const MultigridResult rb = shuffled.solve(B, b_shuffled, y, 1e-12, 200);
+  ASSERT_TRUE(ra.converged && rb.converged);
+  EXPECT_LE(std::abs(ra.iterations - rb.iterations), 2);
+  for (Index i = 0; i < A.rows(); ++i)
+    EXPECT_LT((x.row(i) - y.row(shuffle[i])).norm(), 1e-9 * x.norm() / std::sqrt(A.rows()));
 }
 
 TEST(AggregationMultigrid, SolvesOtherWeightsOnTheSamePatternToTheTolerance) {
