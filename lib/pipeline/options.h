@@ -31,12 +31,13 @@ enum class FrameSolver {
 };
 
 /// Where Auto switches to Multigrid: the frame system's free nodes. A factorisation grows as
-/// n^1.5 and a multigrid solve as n. With the multigrid's two-lane sweeps, on the benchmark's nets
-/// a frame costs the same near 20k free nodes (frame net, Cholesky against multigrid, four
-/// interleaved runs each: 13.3k 12.2 / 13.5 ms, 17.9k 18.6 / 19.3, 27.3k 32.4 / 30.8, 36.8k
-/// 51.2 / 44.5 on a loaded machine), and the multigrid's set-up, with no ordering, is 2-2.5x
-/// shorter (17.9k: 125 against 56 ms). The switch was at 40k before those sweeps.
-constexpr int kMultigridFreeNodes = 20000;
+/// n^1.5 and a multigrid solve as n. With the multigrid's two-lane sweeps in Cuthill-McKee order,
+/// a frame net costs, Cholesky against multigrid (three interleaved runs each): the benchmark's
+/// nets 8.8k free nodes 7.2 / 6.6 ms, 13.3k 12.1 / 11.6, 17.9k 18.9 / 15.0; the ICT face
+/// (9.0k) 8.0 / 10.2. The crossover lies below 9k on the one and near 15k on the other (its
+/// rows cost the multigrid 40% more); the multigrid's set-up, with no ordering, is 2-2.5x
+/// shorter at every size (17.9k: 125 against 55 ms).
+constexpr int kMultigridFreeNodes = 15000;
 
 /// How each free vertex's bind-net point is found in the frame net (the same rule for picking
 /// among the triangles that hold it; README "The method, exactly", 7).
