@@ -274,7 +274,8 @@ void record_frame(ReportFrame& record, const std::string& source, const std::str
 FrameResult slide_named(const BindSetup& setup, const CliOptions& o, const Positions3& positions,
                         const std::string& name) {
   try {
-    return slide_frame(setup, positions, /*keep_id_image=*/!o.dump_dir.empty());
+    return slide_frame(setup, positions,
+                       {.id_image = !o.dump_dir.empty(), .edge_spread = !o.report.empty()});
   } catch (const Error& e) {
     throw Error(e.kind(), name + ": " + e.what());
   }

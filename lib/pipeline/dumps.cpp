@@ -140,7 +140,7 @@ void write_frame_dumps(const std::string& dump_dir, const std::string& frame_pat
     if (!has_net(patch) || report.frame_net.size() != patch.bind_net.size()) continue;
     const int index = static_cast<int>(k);
     SKINSLIDE_CHECK(report.id_image.size > 0,
-                    "frame dumps need the ID image: slide_frame(..., keep_id_image = true)");
+                    "frame dumps need the ID image: slide_frame(..., {.id_image = true})");
     write_id(dump_path(dump_dir, stem, index, "id.exr"), report.id_image, frame_path, patch, index,
              "frame");
     const GeometryImage geometry = geometry_image(report.frame_net, patch.triangles,

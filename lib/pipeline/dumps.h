@@ -49,7 +49,7 @@ void write_bind_dumps(const std::string& dump_dir, const std::string& bind_path,
                       const DumpOptions& options = {});
 
 /// One frame's dumps: per patch, the ID image point location used (report.id_image, so the
-/// frame must come from slide_frame(..., keep_id_image = true)) and the frame net's geometry
+/// frame must come from slide_frame(..., {.id_image = true})) and the frame net's geometry
 /// image (P from `frame_positions`, A) with the slide field (slide.X, slide.Y; see
 /// dump/slide_field.h). Creates `dump_dir` if needed.
 /// \param reports slide_frame()'s FrameResult::patches, parallel to setup.patches

@@ -42,7 +42,7 @@ double edge_log_spread(const PatchNet& patch, const Positions3& points) {
 }
 
 PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, const Positions3& frame,
-                             bool keep_id_image, std::vector<Moved>& moved) {
+                             const FrameExtras& extras, std::vector<Moved>& moved) {
   PatchFrameReport report;
   if (patch.skipped) return report;
   const SlideOptions& opt = setup.options;
@@ -63,7 +63,7 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
 
   t0 = std::chrono::steady_clock::now();
   IdImage image;
-  if (opt.locate == Locate::Image || keep_id_image)
+  if (opt.locate == Locate::Image || extras.id_image)
     image = id_raster(report.frame_net, patch.triangles, opt.lookup_size);
   Positions2 targets(patch.free_vertices.size());
   for (size_t k = 0; k < targets.size(); ++k) targets[k] = patch.bind_net[patch.free_vertices[k]];
@@ -108,10 +108,12 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
     (loc.fallback ? report.located_fallback : report.located_in_image) += 1;
   }
   report.mean_slide = where.empty() ? 0.0 : total / static_cast<double>(where.size());
-  report.spread_frame = edge_log_spread(patch, points);
-  report.spread_slid = edge_log_spread(patch, output);
+  if (extras.edge_spread) {
+    report.spread_frame = edge_log_spread(patch, points);
+    report.spread_slid = edge_log_spread(patch, output);
+  }
   report.transfer_seconds = seconds_since(t0);
-  if (keep_id_image) report.id_image = std::move(image);
+  if (extras.id_image) report.id_image = std::move(image);
   return report;
 }
 
@@ -138,7 +140,8 @@ FrameNetOptions frame_net_options(const SlideOptions& options) {
   return o;
 }
 
-FrameResult slide_frame(const BindSetup& setup, const Positions3& frame, bool keep_id_image) {
+FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
+                        const FrameExtras& extras) {
   if (static_cast<Index>(frame.size()) != setup.vertex_count)
     throw Error(ErrorKind::Input, "the frame has " + std::to_string(frame.size()) +
                                       " vertices; the bind has " +
@@ -147,7 +150,7 @@ FrameResult slide_frame(const BindSetup& setup, const Positions3& frame, bool ke
   std::vector<Moved> moved;
   for (size_t p = 0; p < setup.patches.size(); ++p) {
     try {
-      result.patches.push_back(slide_patch(setup, setup.patches[p], frame, keep_id_image, moved));
+      result.patches.push_back(slide_patch(setup, setup.patches[p], frame, extras, moved));
     } catch (const Error& e) {
       throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
     }

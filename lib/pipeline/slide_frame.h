@@ -24,13 +24,14 @@ struct PatchFrameReport {
   int moved = 0;              ///< free vertices written (weight > 0)
   /// Edge-length spread: std of log(L / L_bind) over the patch's bars (bars of zero length
   /// skipped), in the frame and in the output. Below `spread_frame` = sliding evened the stretch.
+  /// Computed only when FrameExtras::edge_spread asks for it (0 otherwise).
   double spread_frame = 0;
   double spread_slid = 0;
   double solve_seconds = 0;     ///< wall time of the frame net (not deterministic)
   double locate_seconds = 0;    ///< ID image and point location
   double transfer_seconds = 0;  ///< 3D positions, weights, spreads
   Positions2 frame_net;         ///< 2D position of every local vertex in this frame's net
-  IdImage id_image;             ///< the lookup image (kept only with keep_id_image)
+  IdImage id_image;             ///< the lookup image (kept only with FrameExtras::id_image)
 };
 
 struct FrameResult {
@@ -45,12 +46,19 @@ FrameNetOptions frame_net_options(const SlideOptions& options);
 /// kMultigridFreeNodes free nodes on and Cholesky below.
 FrameNetMethod frame_net_method(FrameSolver solver, std::ptrdiff_t free_nodes);
 
+/// What slide_frame computes besides the slid vertices, for dumps and reports: each costs time
+/// on every frame (the spreads a log per bar, twice: about 5% of a 40k-vertex frame).
+struct FrameExtras {
+  bool id_image = false;     ///< keep each patch's ID lookup image (PatchFrameReport::id_image)
+  bool edge_spread = false;  ///< PatchFrameReport::spread_frame and spread_slid
+};
+
 /// Slides one frame. `frame` holds the deformed positions of every mesh vertex (#V).
 /// A free vertex v of weight w = setup.weight[v] (1 when empty) is written at
 /// frame + w (slid - frame): exactly `slid` for w = 1; not written at all for w = 0.
 /// Pure: the result depends only on (setup, frame) (the *_seconds timings aside).
 /// \throw Error(Numeric) when a solve fails or a result is not finite.
 FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
-                        bool keep_id_image = false);
+                        const FrameExtras& extras = {});
 
 }  // namespace skinslide

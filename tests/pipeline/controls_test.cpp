@@ -341,7 +341,7 @@ TEST(Spread, PatchReportMatchesADirectComputation) {
     return std::sqrt(var / static_cast<double>(r.size()));
   };
   const Positions3& frame = c.frames.back();
-  const FrameResult r = slide_frame(setup, frame);
+  const FrameResult r = slide_frame(setup, frame, {.edge_spread = true});
   EXPECT_NEAR(r.patches[0].spread_frame, spread(frame), 1e-12);
   EXPECT_NEAR(r.patches[0].spread_slid, spread(apply_slide(frame, r.slid)), 1e-12);
   EXPECT_LT(r.patches[0].spread_slid, r.patches[0].spread_frame);

@@ -289,7 +289,7 @@ TEST(Dumps, FrameWithoutItsIdImageIsAnInternalError) {
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Internal);
-    EXPECT_NE(std::string(e.what()).find("keep_id_image"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("id_image = true"), std::string::npos) << e.what();
   }
 }
 
