@@ -158,7 +158,7 @@ struct Numeric {
   std::vector<Work> work;
 };
 
-void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z);
+void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z, Vec* az = nullptr);
 
 // Per column: a / b where b > 0, else 0.
 Pair ratio_where_positive(Pair a, Pair b) {
@@ -170,12 +170,14 @@ Pair ratio_where_positive(Pair a, Pair b) {
 // Approximates the solution of A_l zc = rc by two steps of flexible CG preconditioned by the
 // next K-cycle (one when the first already reduces the residual enough).
 void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
-  const Level& C = (*N.levels)[l];
-  const double* A = N.value[l];
   Numeric::Work& w = N.work[l];
   const size_t n = rc.size();
-  kcycle(N, l, rc, w.c1);
-  const auto [rho1, alpha1] = multiply<1>(C, A, w.c1, w.v1, {&rc});
+  kcycle(N, l, rc, w.c1, &w.v1);
+  Pair rho1{0, 0}, alpha1{0, 0};
+  for (size_t i = 0; i < n; ++i) {
+    rho1 += w.c1[i] * w.v1[i];
+    alpha1 += w.c1[i] * rc[i];
+  }
   const Pair t1 = ratio_where_positive(alpha1, rho1);
   Pair r2norm{0, 0}, rcnorm{0, 0};
   w.r2.resize(n);
@@ -189,8 +191,13 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
     for (size_t i = 0; i < n; ++i) zc[i] = t1 * w.c1[i];
     return;
   }
-  kcycle(N, l, w.r2, w.c2);
-  const auto [beta, gamma, alpha2] = multiply<2>(C, A, w.c2, w.v2, {&w.v1, &w.r2});
+  kcycle(N, l, w.r2, w.c2, &w.v2);
+  Pair beta{0, 0}, gamma{0, 0}, alpha2{0, 0};
+  for (size_t i = 0; i < n; ++i) {
+    beta += w.c2[i] * w.v2[i];
+    gamma += w.c2[i] * w.v1[i];
+    alpha2 += w.c2[i] * w.r2[i];
+  }
   Pair f1{0, 0}, f2{0, 0};
   for (int c = 0; c < 2; ++c) {
     if (!(rho1[c] > 0)) continue;
@@ -203,7 +210,7 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
 
 // z = an approximation of A_l^{-1} r: forward Gauss-Seidel from zero, coarse correction, backward
 // Gauss-Seidel (a symmetric smoother around the correction).
-void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
+void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z, Vec* az) {
   const std::vector<Level>& levels = *N.levels;
   const Level& L = levels[l];
   const double* A = N.value[l];
@@ -212,6 +219,7 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
     for (Index i = 0; i < L.rows; ++i) rhs.row(i) << r[i][0], r[i][1];
     const Mat2 sol = N.coarsest.solve(rhs);
     for (Index i = 0; i < L.rows; ++i) z[i] = Pair{sol(i, 0), sol(i, 1)};
+    if (az) multiply(L, A, z, *az);
     return;
   }
   const Index* start = L.start.data();
@@ -239,10 +247,32 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z) {
   else
     coarse_correction(N, l + 1, w.rc, w.zc);
   for (Index i = 0; i < L.rows; ++i) z[i] += w.zc[aggregate[i]];
+  if (!az) {
+    for (Index i = L.rows; i-- > 0;) {
+      Pair s = r[i];
+      for (Index k = start[i]; k < start[i + 1]; ++k) s -= A[k] * z[column[k]];
+      z[i] += s * inverse_diagonal[i];
+    }
+    return;
+  }
+  // The same sweep, also leaving A z in az: row i's products with the rows after it use their
+  // final z and are the sweep's own; once z_i is final, the rows after it get its products, by
+  // symmetry, the terms their own sweep step could not see yet. A coarse-grid step needs A z
+  // right after its K-cycle: this spares it a pass over the level's matrix.
+  Vec& v = *az;
+  std::fill(v.begin(), v.end(), Pair{0, 0});
   for (Index i = L.rows; i-- > 0;) {
-    Pair s = r[i];
-    for (Index k = start[i]; k < start[i + 1]; ++k) s -= A[k] * z[column[k]];
-    z[i] += s * inverse_diagonal[i];
+    Pair s = r[i], after{0, 0};
+    for (Index k = start[i]; k <= diagonal[i]; ++k) s -= A[k] * z[column[k]];
+    for (Index k = diagonal[i] + 1; k < start[i + 1]; ++k) {
+      const Pair t = A[k] * z[column[k]];
+      s -= t;
+      after += t;
+    }
+    const Pair zi = z[i] + s * inverse_diagonal[i];
+    z[i] = zi;
+    v[i] += after + A[diagonal[i]] * zi;
+    for (Index k = diagonal[i] + 1; k < start[i + 1]; ++k) v[column[k]] += A[k] * zi;
   }
 }
 
