@@ -5,8 +5,6 @@
 
 namespace skinslide {
 namespace {
-double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
-
 // Closest point of segment [a, b] to p as the parameter t in [0,1] (a point for a == b).
 double segment_t(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
@@ -15,18 +13,6 @@ double segment_t(const Vec2& p, const Vec2& a, const Vec2& b) {
   return std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
 }
 }  // namespace
-
-Barycentric barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-  Barycentric out;
-  const Vec2 e1 = b - a, e2 = c - a, d = p - a;
-  const double area2 = cross(e1, e2);
-  if (area2 == 0 || !std::isfinite(area2)) return out;
-  const double wb = cross(d, e2) / area2;  // Area(APC) / Area(ABC)
-  const double wc = cross(e1, d) / area2;  // Area(ABP) / Area(ABC)
-  out.w = {1.0 - wb - wc, wb, wc};
-  out.ok = std::isfinite(wb) && std::isfinite(wc);
-  return out;
-}
 
 ClosestPoint closest_point(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
   ClosestPoint best;

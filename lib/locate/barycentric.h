@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include "core/types.h"
 
@@ -17,7 +18,19 @@ struct Barycentric {
   bool ok = false;
   double min() const { return std::min(w[0], std::min(w[1], w[2])); }
 };
-Barycentric barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c);
+/// Inline: a walk through a frame net computes one per step.
+inline Barycentric barycentric(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  Barycentric out;
+  const Vec2 e1 = b - a, e2 = c - a, d = p - a;
+  const double area2 = cross(e1, e2);
+  if (area2 == 0 || !std::isfinite(area2)) return out;
+  const double wb = cross(d, e2) / area2;  // Area(APC) / Area(ABC)
+  const double wc = cross(e1, d) / area2;  // Area(ABP) / Area(ABC)
+  out.w = {1.0 - wb - wc, wb, wc};
+  out.ok = std::isfinite(wb) && std::isfinite(wc);
+  return out;
+}
 
 /// Barycentrics (each in [0,1], summing to 1) of the point of triangle ABC closest to p, and the
 /// squared distance to it. Degenerate triangles fall back to their closest edge or corner.
