@@ -155,8 +155,10 @@ FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
       throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
     }
   }
-  std::sort(moved.begin(), moved.end(),
-            [](const Moved& a, const Moved& b) { return a.vertex < b.vertex; });
+  // One patch lists its vertices in ascending order already: no sort of the frame's largest list.
+  const auto by_vertex = [](const Moved& a, const Moved& b) { return a.vertex < b.vertex; };
+  if (!std::is_sorted(moved.begin(), moved.end(), by_vertex))
+    std::sort(moved.begin(), moved.end(), by_vertex);
   for (size_t k = 1; k < moved.size(); ++k)
     SKINSLIDE_CHECK(moved[k].vertex != moved[k - 1].vertex, "a vertex slides in one patch only");
   result.slid.vertex.reserve(moved.size());
