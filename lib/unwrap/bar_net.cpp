@@ -355,7 +355,7 @@ FrameNetSolution FrameNetSolver::solve(const std::vector<double>& q,
     // whether the warm start is kept, as the check below does for the other methods.
     std::vector<double> values(multigrid_->value_slot().size(), 0.0);
     add_densities(level_slot_, q, values.data());
-    Mat2 x = x0;
+    Mat2& x = x0;  // the warm start is solved in place: one copy fewer per frame in flight
     const MultigridResult mg =
         multigrid_->solve(values, b, x, options.cg_tolerance, options.cg_max_iterations);
     out.iterations = mg.iterations;

@@ -460,6 +460,7 @@ MultigridResult AggregationMultigrid::solve(const std::vector<double>& level0_va
   multiply(top, N.value[0], xv, r);
   for (size_t i = 0; i < n; ++i) r[i] = bv[i] - r[i];
   const Pair bb = dot(bv, bv);
+  Vec().swap(bv);  // not read again: its memory goes to the rest of the solve
   Pair rr = dot(r, r), pq_previous{0, 0};
   MultigridResult out;
   std::vector<double> history;  // the worse column's relative residual per iteration
