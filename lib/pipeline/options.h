@@ -32,12 +32,12 @@ enum class FrameSolver {
 
 /// Where Auto switches to Multigrid: the frame system's free nodes. A factorisation grows as
 /// n^1.5 and a multigrid solve as n. With the multigrid's two-lane sweeps in Cuthill-McKee order,
-/// a frame net costs, Cholesky against multigrid (three interleaved runs each): the benchmark's
-/// nets 8.8k free nodes 7.2 / 6.6 ms, 13.3k 12.1 / 11.6, 17.9k 18.9 / 15.0; the ICT face
-/// (9.0k) 8.0 / 10.2. The crossover lies below 9k on the one and near 15k on the other (its
-/// rows cost the multigrid 40% more); the multigrid's set-up, with no ordering, is 2-2.5x
-/// shorter at every size (17.9k: 125 against 55 ms).
-constexpr int kMultigridFreeNodes = 15000;
+/// fused passes and its coarse steps' products taken from their sweeps, a frame net costs,
+/// Cholesky against multigrid (three interleaved runs each): on the benchmark's nets 1.6k free
+/// nodes 0.55 / 0.76 ms, 4.3k 1.85 / 1.99, 8.8k 4.86 / 4.29; on the ICT face (9.0k) 5.59 /
+/// 5.26. The crossover lies near 6k; the multigrid's set-up, with no ordering, is 1.6-2.4x
+/// shorter at every size (4.3k: 18.4 against 8.7 ms).
+constexpr int kMultigridFreeNodes = 6000;
 
 /// How each free vertex's bind-net point is found in the frame net (the same rule for picking
 /// among the triangles that hold it; README "The method, exactly", 7).
