@@ -452,7 +452,7 @@ MultigridResult AggregationMultigrid::solve(const std::vector<double>& level0_va
     }
   }
   const size_t n = static_cast<size_t>(top.rows);
-  Vec xv(n), bv(n), r(n), z(n), p(n), q(n);
+  Vec xv(n), bv(n), r(n);
   for (Index i = 0; i < top.rows; ++i) {
     xv[i] = Pair{x(order_[i], 0), x(order_[i], 1)};
     bv[i] = Pair{b(order_[i], 0), b(order_[i], 1)};
@@ -460,7 +460,8 @@ MultigridResult AggregationMultigrid::solve(const std::vector<double>& level0_va
   multiply(top, N.value[0], xv, r);
   for (size_t i = 0; i < n; ++i) r[i] = bv[i] - r[i];
   const Pair bb = dot(bv, bv);
-  Vec().swap(bv);  // not read again: its memory goes to the rest of the solve
+  Vec().swap(bv);  // not read again: the vectors below can take its memory
+  Vec z(n), p(n), q(n);
   Pair rr = dot(r, r), pq_previous{0, 0};
   MultigridResult out;
   std::vector<double> history;  // the worse column's relative residual per iteration
