@@ -208,6 +208,36 @@ void coarse_correction(Numeric& N, size_t l, const Vec& rc, Vec& zc) {
   for (size_t i = 0; i < n; ++i) zc[i] = f1 * w.c1[i] + f2 * w.c2[i];
 }
 
+// Backward Gauss-Seidel on z. With kProduct it also leaves A z in az: row i's products with the
+// rows after it use their final z and are the sweep's own; once z_i is final, the rows after it
+// get its products, by symmetry, the terms their own sweep step could not see yet. A coarse-grid
+// step needs A z right after its K-cycle: this spares it a pass over the level's matrix. Either
+// way z gets the same bits.
+template <bool kProduct>
+void backward_sweep(const Level& L, const double* A, const double* inverse_diagonal, const Vec& r,
+                    Vec& z, Vec* az) {
+  const Index* start = L.start.data();
+  const Index* column = L.column.data();
+  const Index* diagonal = L.diagonal.data();
+  if constexpr (kProduct) std::fill(az->begin(), az->end(), Pair{0, 0});
+  for (Index i = L.rows; i-- > 0;) {
+    Pair s = r[i], after{0, 0};
+    for (Index k = start[i]; k <= diagonal[i]; ++k) s -= A[k] * z[column[k]];
+    for (Index k = diagonal[i] + 1; k < start[i + 1]; ++k) {
+      const Pair t = A[k] * z[column[k]];
+      s -= t;
+      if constexpr (kProduct) after += t;
+    }
+    const Pair zi = z[i] + s * inverse_diagonal[i];
+    z[i] = zi;
+    if constexpr (kProduct) {
+      Vec& v = *az;
+      v[i] += after + A[diagonal[i]] * zi;
+      for (Index k = diagonal[i] + 1; k < start[i + 1]; ++k) v[column[k]] += A[k] * zi;
+    }
+  }
+}
+
 // z = an approximation of A_l^{-1} r: forward Gauss-Seidel from zero, coarse correction, backward
 // Gauss-Seidel (a symmetric smoother around the correction).
 void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z, Vec* az) {
@@ -247,33 +277,10 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z, Vec* az) {
   else
     coarse_correction(N, l + 1, w.rc, w.zc);
   for (Index i = 0; i < L.rows; ++i) z[i] += w.zc[aggregate[i]];
-  if (!az) {
-    for (Index i = L.rows; i-- > 0;) {
-      Pair s = r[i];
-      for (Index k = start[i]; k < start[i + 1]; ++k) s -= A[k] * z[column[k]];
-      z[i] += s * inverse_diagonal[i];
-    }
-    return;
-  }
-  // The same sweep, also leaving A z in az: row i's products with the rows after it use their
-  // final z and are the sweep's own; once z_i is final, the rows after it get its products, by
-  // symmetry, the terms their own sweep step could not see yet. A coarse-grid step needs A z
-  // right after its K-cycle: this spares it a pass over the level's matrix.
-  Vec& v = *az;
-  std::fill(v.begin(), v.end(), Pair{0, 0});
-  for (Index i = L.rows; i-- > 0;) {
-    Pair s = r[i], after{0, 0};
-    for (Index k = start[i]; k <= diagonal[i]; ++k) s -= A[k] * z[column[k]];
-    for (Index k = diagonal[i] + 1; k < start[i + 1]; ++k) {
-      const Pair t = A[k] * z[column[k]];
-      s -= t;
-      after += t;
-    }
-    const Pair zi = z[i] + s * inverse_diagonal[i];
-    z[i] = zi;
-    v[i] += after + A[diagonal[i]] * zi;
-    for (Index k = diagonal[i] + 1; k < start[i + 1]; ++k) v[column[k]] += A[k] * zi;
-  }
+  if (az)
+    backward_sweep<true>(L, A, inverse_diagonal, r, z, az);
+  else
+    backward_sweep<false>(L, A, inverse_diagonal, r, z, az);
 }
 
 // The top level's sweep order: A's rows in Cuthill-McKee order, breadth first from a far end of
