@@ -300,8 +300,9 @@ std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
                                    const CliOptions& o, const std::string& frame_path,
                                    const std::string& out_path, ReportFrame* record) {
   auto t0 = std::chrono::steady_clock::now();
-  const MeshFile frame = read_mesh_file(frame_path, {o.mesh});
+  MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
+  release_faces(frame);
   const double read_seconds = seconds_since(t0);
   if (o.no_slide) {
     write_slid_mesh_file(frame, SlidVertices{}, out_path);
@@ -406,7 +407,7 @@ int run(const CliOptions& o) {
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
   // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
-  const MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
+  MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
   RigClip clip;
   if (o.rig) {
     clip = rig_clip(bind, {o.animation, o.fps});
@@ -427,6 +428,13 @@ int run(const CliOptions& o) {
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
   RunReport report;
   const SlideControls controls = slide_controls(o, bind, report);
+  // The bind file's contents served the controls (vertex colours, attributes); from here on the
+  // frames need only its mesh, unless it is the character the frames are posed from. At 1M
+  // vertices an OBJ's text and token spans are about 70 MB held for the whole run.
+  if (!o.rig) {
+    bind.obj.reset();
+    bind.gltf.reset();
+  }
   unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
   // --no-slide measures the I/O floor of a run: no bind set-up, frames copied unchanged.
   const BindSetup setup =

@@ -64,6 +64,13 @@ void require_same_topology(const MeshFile& bind, const MeshFile& frame) {
                     ") has " + std::to_string(a.face_count()));
 }
 
+void release_faces(MeshFile& frame) {
+  PolyMesh& m = frame.mesh;
+  std::vector<Index>{0}.swap(m.face_start);
+  std::vector<Index>().swap(m.face_vertices);
+  std::vector<long>().swap(frame.face_lines);
+}
+
 void write_slid_mesh_file(const MeshFile& frame, const SlidVertices& slid,
                           const std::string& out_path) {
   if (frame.gltf) return write_gltf_file(frame, slid, out_path);

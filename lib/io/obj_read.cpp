@@ -89,7 +89,6 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
       if (tok.size() < 4)
         fail("vertex has " + count_of(tok.size() - 1, "coordinate", "coordinates") + "; 3 needed");
       Vec3 p;
-      std::array<std::uint64_t, 6> span{};
       for (int k = 0; k < 3; ++k) {
         const Token& t = tok[1 + k];
         const auto x = parse_double(t.text);
@@ -97,12 +96,9 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
         if (!std::isfinite(*x))
           throw_input(path, line, "vertex coordinate " + quoted(t.text) + " is not finite");
         p[k] = *x;
-        span[2 * k] = t.begin;
-        span[2 * k + 1] = t.begin + t.text.size();
       }
       obj.mesh.positions.push_back(p);
-      obj.text.coordinate_spans.push_back(span);
-      obj.vertex_lines.push_back(line);
+      obj.text.coordinate_spans.push_back({tok[1].begin, tok[3].begin + tok[3].text.size()});
     } else if (key == "f") {
       if (tok.size() < 4)
         fail("face has " + count_of(tok.size() - 1, "vertex", "vertices") + "; at least 3 needed");
@@ -152,5 +148,19 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
 }
 
 ObjMesh read_obj(const std::string& path) { return parse_obj(path, read_file(path)); }
+
+std::array<std::uint64_t, 6> coordinate_tokens(const ObjText& text, size_t v) {
+  const auto [begin, end] = text.coordinate_spans[v];
+  const char* bytes = text.bytes.data();
+  std::array<std::uint64_t, 6> out{};
+  std::uint64_t i = begin;
+  for (int k = 0; k < 3; ++k) {
+    while (i < end && is_space(bytes[i])) ++i;
+    out[2 * k] = i;
+    while (i < end && !is_space(bytes[i])) ++i;
+    out[2 * k + 1] = i;
+  }
+  return out;
+}
 
 }  // namespace skinslide

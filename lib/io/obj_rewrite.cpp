@@ -18,7 +18,7 @@ void rewrite(const ObjText& obj, const Positions3& original, const Positions3& p
   std::uint64_t copied = 0;  // bytes of obj.bytes already emitted
   for (size_t v = 0; v < positions.size(); ++v) {
     if (positions[v] == original[v]) continue;
-    const auto& span = obj.coordinate_spans[v];
+    const std::array<std::uint64_t, 6> span = coordinate_tokens(obj, v);
     for (int k = 0; k < 3; ++k) {
       emit(bytes.substr(copied, span[2 * k] - copied));
       emit(std::string_view(format_double(positions[v][k])));

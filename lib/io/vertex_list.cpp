@@ -141,7 +141,7 @@ std::vector<double> obj_color_weights(const std::string& path, const ObjText& ob
   long line = 1;
   size_t counted = 0;  // newlines before this offset are in `line`
   for (size_t v = 0; v < w.size(); ++v) {
-    const size_t z_end = obj.coordinate_spans[v][5];
+    const size_t z_end = obj.coordinate_spans[v][1];
     for (; counted < z_end; ++counted)
       if (text[counted] == '\n') ++line;
     size_t eol = text.find('\n', z_end);

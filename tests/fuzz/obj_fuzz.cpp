@@ -33,15 +33,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   const PolyMesh& m = obj.mesh;
   require(m.vertex_count() > 0);
-  require(obj.vertex_lines.size() == m.positions.size());
+  require(obj.text.coordinate_spans.size() == m.positions.size());
   require(obj.face_lines.size() == static_cast<size_t>(m.face_count()));
   for (Index f = 0; f < m.face_count(); ++f) {
     require(m.face_size(f) >= 3);
     for (Index k = 0; k < m.face_size(f); ++k)
       require(m.face_begin(f)[k] >= 0 && m.face_begin(f)[k] < m.vertex_count());
   }
-  for (const auto& span : obj.text.coordinate_spans)
+  for (size_t v = 0; v < m.positions.size(); ++v) {
+    const auto span = coordinate_tokens(obj.text, v);
+    require(span[0] == obj.text.coordinate_spans[v][0] &&
+            span[5] == obj.text.coordinate_spans[v][1]);
     for (int k = 0; k < 6; k += 2) require(span[k] < span[k + 1] && span[k + 1] <= bytes.size());
+  }
   for (const Vec3& p : m.positions)
     require(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
 

@@ -27,8 +27,27 @@ TEST(ObjRead, ReadsVerticesFacesAndTheirLines) {
   EXPECT_EQ(obj.mesh.face_begin(1)[0], 0);  // -4 of 4 = vertex 1
   EXPECT_EQ(obj.mesh.face_begin(1)[2], 3);
   EXPECT_EQ(obj.face_lines, (std::vector<long>{8, 9}));
-  EXPECT_EQ(obj.vertex_lines, (std::vector<long>{2, 3, 5, 6}));
   EXPECT_EQ(obj.mesh.positions[2], Vec3(1, 1, 0));
+}
+
+TEST(ObjRead, FindsEachCoordinateTokenWhateverTheSpacing) {
+  const std::string text = "v 0 0 0\nv\t1.5  -2\t\t3e1 1.0 # w\nv 1 1 0# c\n";
+  const ObjMesh obj = parse_obj("t.obj", text);
+  ASSERT_EQ(obj.text.coordinate_spans.size(), 3u);
+  auto tokens = [&](size_t v) {
+    const auto span = coordinate_tokens(obj.text, v);
+    std::vector<std::string> out;
+    for (int k = 0; k < 6; k += 2) out.push_back(text.substr(span[k], span[k + 1] - span[k]));
+    return out;
+  };
+  EXPECT_EQ(tokens(0), (std::vector<std::string>{"0", "0", "0"}));
+  EXPECT_EQ(tokens(1), (std::vector<std::string>{"1.5", "-2", "3e1"}));
+  EXPECT_EQ(tokens(2), (std::vector<std::string>{"1", "1", "0"}));
+  // A span runs from x's first byte to z's last: the w and the comment are outside it.
+  EXPECT_EQ(obj.text.coordinate_spans[1][0], 10u);
+  EXPECT_EQ(text.substr(obj.text.coordinate_spans[1][0],
+                        obj.text.coordinate_spans[1][1] - obj.text.coordinate_spans[1][0]),
+            "1.5  -2\t\t3e1");
 }
 
 TEST(ObjRead, VerticesAfterFacesAndForwardReferencesAreValid) {

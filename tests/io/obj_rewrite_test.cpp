@@ -6,13 +6,13 @@ namespace skinslide {
 
 TEST(ObjRewrite, OnlyTheCoordinatesOfMovedVerticesChange) {
   const std::string text =
-      "# c\r\nv  0 0 0\r\nv\t1 0.5 0 1.0 # keep\r\nvt 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n";
+      "# c\r\nv  0 0 0\r\nv\t1  0.5\t0 1.0 # keep\r\nvt 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n";
   const ObjMesh obj = parse_obj("t.obj", text);
   Positions3 moved = obj.mesh.positions;
   EXPECT_EQ(rewrite_obj(obj.text, obj.mesh.positions, moved), text);  // nothing moved
   moved[1] = Vec3(0.1, -2, 1e-5);
   EXPECT_EQ(rewrite_obj(obj.text, obj.mesh.positions, moved),
-            "# c\r\nv  0 0 0\r\nv\t0.1 -2 1e-05 1.0 # keep\r\nvt 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n");
+            "# c\r\nv  0 0 0\r\nv\t0.1  -2\t1e-05 1.0 # keep\r\nvt 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n");
 }
 
 TEST(ObjRewrite, NumbersRoundTripExactly) {
