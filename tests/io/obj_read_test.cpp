@@ -84,6 +84,19 @@ TEST(ObjRead, RejectsBadInputWithFileAndLine) {
   EXPECT_EQ(error_of("v 0 0 0\nf 1 a 3\n"), "t.obj:2: face entry 'a' is not a vertex index");
 }
 
+// The first bad line decides the message, whatever comes after it.
+TEST(ObjRead, TheFirstBadLineIsTheOneReported) {
+  EXPECT_EQ(error_of(std::string("v 0 0 0\nv 0 x 0\nv \x00\n", 20)),
+            "t.obj:2: vertex coordinate 'x' is not a number");
+  EXPECT_EQ(error_of(std::string("v 0 0 0\n\x00\nv 0 x 0\n", 18)),
+            "t.obj:2: binary data (NUL byte): not a text OBJ file");
+  // The smallest vertex used twice, in faces of a few corners and of many.
+  EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 3 2 1 2 3\n"),
+            "t.obj:4: face uses vertex 2 twice (degenerate face)");
+  EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 3 1 2 3 1 2 3 1 2 3\n"),
+            "t.obj:4: face uses vertex 1 twice (degenerate face)");
+}
+
 TEST(ObjRead, EveryPrefixOfAValidFileParsesOrFailsCleanly) {
   const std::string text =
       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1 4/1\nf 1 3 4\n";
