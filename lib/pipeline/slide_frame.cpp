@@ -14,12 +14,6 @@
 namespace skinslide {
 namespace {
 
-struct Moved {
-  Index vertex;
-  SurfaceSample sample;
-  Vec3 position;
-};
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -42,7 +36,7 @@ double edge_log_spread(const PatchNet& patch, const Positions3& points) {
 }
 
 PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, const Positions3& frame,
-                             const FrameExtras& extras, std::vector<Moved>& moved) {
+                             const FrameExtras& extras, SlidVertices& moved) {
   PatchFrameReport report;
   if (patch.skipped) return report;
   const SlideOptions& opt = setup.options;
@@ -77,7 +71,9 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   report.locate_seconds = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  Positions3 output = points;
+  // The slid patch as a whole is only needed for its edge-length spread.
+  Positions3 output;
+  if (extras.edge_spread) output = points;
   double total = 0;
   for (size_t k = 0; k < where.size(); ++k) {
     const Location& loc = where[k];
@@ -96,12 +92,13 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
       continue;
     }
     if (w != 1) p = points[v] + w * (p - points[v]);
-    output[v] = p;
+    if (extras.edge_spread) output[v] = p;
     ++report.moved;
     const Index fan = patch.triangle_fan[loc.triangle];
-    moved.push_back(
-        {patch.vertices[v],
-         SurfaceSample{patch.triangle_face[loc.triangle], {0, fan + 1, fan + 2}, loc.weight}, p});
+    moved.vertex.push_back(patch.vertices[v]);
+    moved.sample.push_back(
+        SurfaceSample{patch.triangle_face[loc.triangle], {0, fan + 1, fan + 2}, loc.weight});
+    moved.position.push_back(p);
     const double d = (p - points[v]).norm();
     report.max_slide = std::max(report.max_slide, d);
     total += d;
@@ -147,28 +144,39 @@ FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
                                       " vertices; the bind has " +
                                       std::to_string(setup.vertex_count));
   FrameResult result;
-  std::vector<Moved> moved;
+  SlidVertices& slid = result.slid;
+  size_t free_vertices = 0;
+  for (const PatchNet& patch : setup.patches) free_vertices += patch.free_vertices.size();
+  slid.vertex.reserve(free_vertices);
+  slid.sample.reserve(free_vertices);
+  slid.position.reserve(free_vertices);
   for (size_t p = 0; p < setup.patches.size(); ++p) {
     try {
-      result.patches.push_back(slide_patch(setup, setup.patches[p], frame, extras, moved));
+      result.patches.push_back(slide_patch(setup, setup.patches[p], frame, extras, slid));
     } catch (const Error& e) {
       throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
     }
   }
-  // One patch lists its vertices in ascending order already: no sort of the frame's largest list.
-  const auto by_vertex = [](const Moved& a, const Moved& b) { return a.vertex < b.vertex; };
-  if (!std::is_sorted(moved.begin(), moved.end(), by_vertex))
-    std::sort(moved.begin(), moved.end(), by_vertex);
-  for (size_t k = 1; k < moved.size(); ++k)
-    SKINSLIDE_CHECK(moved[k].vertex != moved[k - 1].vertex, "a vertex slides in one patch only");
-  result.slid.vertex.reserve(moved.size());
-  result.slid.sample.reserve(moved.size());
-  result.slid.position.reserve(moved.size());
-  for (const Moved& m : moved) {
-    result.slid.vertex.push_back(m.vertex);
-    result.slid.sample.push_back(m.sample);
-    result.slid.position.push_back(m.position);
+  // Each patch lists its vertices in ascending order: one patch, or patches that do not
+  // interleave, need no reordering of the frame's largest lists.
+  if (!std::is_sorted(slid.vertex.begin(), slid.vertex.end())) {
+    std::vector<size_t> order(slid.vertex.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return slid.vertex[a] < slid.vertex[b]; });
+    SlidVertices sorted;
+    sorted.vertex.reserve(order.size());
+    sorted.sample.reserve(order.size());
+    sorted.position.reserve(order.size());
+    for (size_t k : order) {
+      sorted.vertex.push_back(slid.vertex[k]);
+      sorted.sample.push_back(slid.sample[k]);
+      sorted.position.push_back(slid.position[k]);
+    }
+    slid = std::move(sorted);
   }
+  for (size_t k = 1; k < slid.vertex.size(); ++k)
+    SKINSLIDE_CHECK(slid.vertex[k] != slid.vertex[k - 1], "a vertex slides in one patch only");
   return result;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -210,6 +211,28 @@ TEST(SlideFrame, DegenerateBindsGiveFiniteVerticesOnTheFrameSurface) {
   for (Vec3& p : bind.positions) p.y() = 0;  // the whole bind on a line
   expect_finite_and_on_surface(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}), frame,
                                "bind collapsed to a line");
+}
+
+// Two patches side by side on a row-major grid: their vertex ids interleave row by row. The slid
+// list still comes out ascending, each vertex with its own sample and position.
+TEST(SlideFrame, InterleavedPatchesGiveOneAscendingList) {
+  const int n = 12, m = 8;
+  const PolyMesh grid = test::quad_grid(n, m);
+  std::vector<Index> left, right;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) (i < n / 2 ? left : right).push_back(j * n + i);
+  const BindSetup setup = bind_setup(grid, {left, right}, SlideOptions{});
+  ASSERT_EQ(setup.patches.size(), 2u);
+  Positions3 frame = grid.positions;
+  for (Vec3& p : frame) p = Vec3(p[0] * (1 + 0.05 * p[1]), p[1], 0.1 * p[0] * p[0]);
+  const FrameResult r = slide_frame(setup, frame);
+  ASSERT_EQ(r.slid.vertex.size(),
+            setup.patches[0].free_vertices.size() + setup.patches[1].free_vertices.size());
+  EXPECT_TRUE(std::adjacent_find(r.slid.vertex.begin(), r.slid.vertex.end(),
+                                 std::greater_equal<Index>()) == r.slid.vertex.end());
+  for (size_t k = 0; k < r.slid.vertex.size(); ++k)
+    EXPECT_EQ(surface_point(grid, frame, r.slid.sample[k]), r.slid.position[k])
+        << "vertex " << r.slid.vertex[k];
 }
 
 TEST(SlideFrame, AWrongVertexCountIsAnInputError) {
