@@ -4,11 +4,14 @@
 
 namespace skinslide {
 
-std::string format_double(double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
+DoubleText double_text(double x) {
+  DoubleText t;
+  const auto r = std::to_chars(t.chars, t.chars + sizeof t.chars, x);
+  t.size = static_cast<std::size_t>(r.ptr - t.chars);
+  return t;
 }
+
+std::string format_double(double x) { return std::string(double_text(x).view()); }
 
 std::optional<double> parse_double(std::string_view text) {
   // from_chars rejects a leading '+', which some exporters write.

@@ -1,6 +1,7 @@
 // Locale-free number text: shortest round-trip doubles out, strict doubles and integers in.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -9,6 +10,15 @@ namespace skinslide {
 
 /// Shortest text that reads back to exactly `x` (std::to_chars), e.g. "0.1", "1e-05", "-3".
 std::string format_double(double x);
+
+/// The same text held in place, for loops that format every coordinate of a frame: most are
+/// longer than a std::string keeps without allocating.
+struct DoubleText {
+  char chars[32];
+  std::size_t size;
+  std::string_view view() const { return {chars, size}; }
+};
+DoubleText double_text(double x);
 
 /// Parses the whole of `text` as a double ("1", "-2.5e3", "+1"); nullopt when it is not one.
 /// "nan" and "inf" parse (the caller decides whether non-finite values are allowed).

@@ -21,7 +21,7 @@ void rewrite(const ObjText& obj, const Positions3& original, const Positions3& p
     const std::array<std::uint64_t, 6> span = coordinate_tokens(obj, v);
     for (int k = 0; k < 3; ++k) {
       emit(bytes.substr(copied, span[2 * k] - copied));
-      emit(std::string_view(format_double(positions[v][k])));
+      emit(double_text(positions[v][k]).view());
       copied = span[2 * k + 1];
     }
   }
