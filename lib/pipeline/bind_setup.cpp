@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <future>
 #include <string>
 #include <thread>
 
@@ -212,8 +213,8 @@ class LocalIds {
 };
 
 PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const SlideOptions& options,
-                   const PatchChoice& choice, const std::vector<char>& pinned,
-                   LocalIds& local_ids) {
+                   const PatchChoice& choice, const std::vector<char>& pinned, LocalIds& local_ids,
+                   bool spare_thread) {
   PatchNet patch;
   patch.selection = comp.selection;
   patch.faces = comp.faces;
@@ -301,18 +302,25 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
       force_densities(patch.bind_lengths, options.density, options.q_floor);
   const FrameNetMethod method = frame_net_method(
       options.frame_solver, static_cast<std::ptrdiff_t>(patch.free_vertices.size()));
-  // The frame nets' free nodes are among the bind net's: its fill-reducing order serves them too.
-  std::vector<Index> node_order;
-  patch.bind_net = bind_net(patch, q, square.positions, options, method, node_order);
-  patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
-
   // Frame nets: the same bars, every loop vertex fixed at its bind-net position.
   BarNet frame;
   frame.node_count = static_cast<Index>(patch.vertices.size());
   frame.bars = patch.bars;
   frame.fixed = std::move(fixed);
-  patch.solver =
-      std::make_shared<const FrameNetSolver>(std::move(frame), patch.bind_net, method, node_order);
+  // The frame nets' multigrid hierarchy needs their fixed nodes, not the bind net: a spare thread
+  // builds it while the bind net is solved (100k vertices: 26 ms of the set-up, 1M: 0.36 s).
+  // The same hierarchy either way.
+  std::future<std::shared_ptr<const AggregationMultigrid>> hierarchy;
+  if (spare_thread && method == FrameNetMethod::Multigrid)
+    hierarchy = std::async(std::launch::async, [&frame] { return frame_net_multigrid(frame); });
+  // The frame nets' free nodes are among the bind net's: its fill-reducing order serves them too.
+  std::vector<Index> node_order;
+  patch.bind_net = bind_net(patch, q, square.positions, options, method, node_order);
+  patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
+  patch.solver = hierarchy.valid() ? std::make_shared<const FrameNetSolver>(
+                                         std::move(frame), patch.bind_net, hierarchy.get())
+                                   : std::make_shared<const FrameNetSolver>(
+                                         std::move(frame), patch.bind_net, method, node_order);
   return patch;
 }
 
@@ -366,11 +374,13 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
   std::vector<PatchNet> nets(comps.size());
   std::vector<std::exception_ptr> failed(comps.size());
   std::atomic<size_t> next{0};
+  // With at least two threads a patch, each patch's set-up runs two things at once.
+  const bool spare_thread = threads >= 2 * comps.size();
   auto work = [&] {
     LocalIds local_ids(nv);
     for (size_t c; (c = next++) < comps.size();) {
       try {
-        nets[c] = patch_net(bind, comps[c], options, choices[c], pinned, local_ids);
+        nets[c] = patch_net(bind, comps[c], options, choices[c], pinned, local_ids, spare_thread);
       } catch (const Error& e) {
         failed[c] = std::make_exception_ptr(Error(
             e.kind(), "patch " + std::to_string(c) + " (" + namer(comps[c].faces.front()) + ", " +

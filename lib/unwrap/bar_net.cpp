@@ -219,6 +219,13 @@ Mat2 direct_solve(const SparseMatrix& K, const Mat2& b, std::vector<Index>* perm
   return x;
 }
 
+// K_ff's pattern with every q = 1: what a frame solver's slots and hierarchy are built from.
+SparseMatrix unit_pattern(const BarNet& net, const std::vector<Index>& free_id, Index rows) {
+  SparseMatrix K = free_matrix(net, free_id, std::vector<double>(net.bars.size(), 1.0), rows);
+  K.makeCompressed();
+  return K;
+}
+
 // A frame's matrix values: each bar's q added at its four slots, in bar order.
 void add_densities(const std::vector<std::array<Index, 4>>& slots, const std::vector<double>& q,
                    double* values) {
@@ -278,18 +285,35 @@ Positions2 solve_bar_net_multigrid(const BarNet& net, const std::vector<double>&
   return scatter(net, s.free_id, x, positions);
 }
 
+std::shared_ptr<const AggregationMultigrid> frame_net_multigrid(const BarNet& net) {
+  const FreeSystem s = free_system(net);
+  const Index rows = static_cast<Index>(s.free_nodes.size());
+  if (rows == 0) return nullptr;
+  return std::make_shared<const AggregationMultigrid>(unit_pattern(net, s.free_id, rows));
+}
+
+FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions,
+                               std::shared_ptr<const AggregationMultigrid> multigrid)
+    : FrameNetSolver(std::move(net), std::move(positions), FrameNetMethod::Multigrid, {},
+                     std::move(multigrid)) {}
+
 FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
                                const std::vector<Index>& node_order)
+    : FrameNetSolver(std::move(net), std::move(positions), method, node_order, nullptr) {}
+
+FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
+                               const std::vector<Index>& node_order,
+                               std::shared_ptr<const AggregationMultigrid> multigrid)
     : net_(std::move(net)), method_(method), start_(std::move(positions)) {
   SKINSLIDE_CHECK(start_.size() == static_cast<size_t>(net_.node_count), "one position per node");
   FreeSystem s = free_system(net_);
   free_id_ = std::move(s.free_id);
   free_nodes_ = std::move(s.free_nodes);
   const Index rows = static_cast<Index>(free_nodes_.size());
-  pattern_ = free_matrix(net_, free_id_, std::vector<double>(net_.bars.size(), 1.0), rows);
-  pattern_.makeCompressed();
+  pattern_ = unit_pattern(net_, free_id_, rows);
   if (rows > 0 && method_ == FrameNetMethod::Multigrid)
-    multigrid_ = std::make_shared<const AggregationMultigrid>(pattern_);
+    multigrid_ =
+        multigrid ? std::move(multigrid) : std::make_shared<const AggregationMultigrid>(pattern_);
   if (rows > 0 && method_ == FrameNetMethod::Cholesky) {
     // A given order is restricted to this net's free nodes: eliminating a principal submatrix in
     // the order of the whole creates no more fill than the whole had.

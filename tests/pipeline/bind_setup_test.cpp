@@ -57,6 +57,28 @@ TEST(BindSetup, PatchesSetUpInParallelEqualTheSerialSetUp) {
   }
 }
 
+// One multigrid patch and two threads: the frame nets' hierarchy is built beside the bind net's
+// solve. The set-up and every slid bit are those of one thread.
+TEST(BindSetup, AMultigridPatchSetUpOnTwoThreadsEqualsTheSerialSetUp) {
+  const Blocks b;
+  SlideOptions options;
+  options.frame_solver = FrameSolver::Multigrid;
+  const BindSetup one = bind_setup(b.mesh, {b.faces}, options, SlideControls{}, {}, 1);
+  const BindSetup two = bind_setup(b.mesh, {b.faces}, options, SlideControls{}, {}, 8);
+  ASSERT_EQ(two.patches.size(), one.patches.size());
+  for (size_t p = 0; p < one.patches.size(); ++p) {
+    ASSERT_EQ(one.patches[p].solver->method(), FrameNetMethod::Multigrid);
+    EXPECT_EQ(two.patches[p].solver->method(), FrameNetMethod::Multigrid);
+    EXPECT_EQ(two.patches[p].bind_net, one.patches[p].bind_net);
+  }
+  const Positions3 frame = bent(b.mesh);
+  const FrameResult a = slide_frame(one, frame), c = slide_frame(two, frame);
+  for (size_t p = 0; p < one.patches.size(); ++p)
+    EXPECT_EQ(c.patches[p].cg_iterations, a.patches[p].cg_iterations);
+  EXPECT_EQ(c.slid.vertex, a.slid.vertex);
+  EXPECT_EQ(c.slid.position, a.slid.position);
+}
+
 TEST(BindSetup, AutoSolvesByMultigridFromTheThresholdOn) {
   EXPECT_EQ(frame_net_method(FrameSolver::Auto, kMultigridFreeNodes - 1), FrameNetMethod::Cholesky);
   EXPECT_EQ(frame_net_method(FrameSolver::Auto, kMultigridFreeNodes), FrameNetMethod::Multigrid);

@@ -218,6 +218,28 @@ TEST(BarNet, MultigridAgreesWithCholeskyOnRandomNetsAndKeepsAnExactWarmStart) {
   }
 }
 
+// A hierarchy built on its own (as a spare thread does during the set-up) solves bit for bit as
+// the one the solver builds itself.
+TEST(BarNet, APrebuiltMultigridHierarchySolvesTheSameBits) {
+  std::mt19937 rng{5};
+  std::uniform_real_distribution<double> uq(1e-3, 1.0);
+  const GridNet g = grid_net(30);
+  const FrameNetSolver own(g.net, g.start, FrameNetMethod::Multigrid);
+  const auto hierarchy = frame_net_multigrid(g.net);
+  ASSERT_TRUE(hierarchy);
+  const FrameNetSolver prebuilt(g.net, g.start, hierarchy);
+  EXPECT_EQ(prebuilt.method(), FrameNetMethod::Multigrid);
+  std::vector<double> q(g.net.bars.size());
+  for (double& v : q) v = uq(rng);
+  const FrameNetSolution a = own.solve(q, {1e-12, 200}), b = prebuilt.solve(q, {1e-12, 200});
+  EXPECT_GT(a.iterations, 0);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.positions, b.positions);
+  BarNet all_fixed = g.net;
+  all_fixed.fixed.assign(all_fixed.node_count, 1);
+  EXPECT_FALSE(frame_net_multigrid(all_fixed));
+}
+
 TEST(BarNet, MultigridFallsBackToADirectSolveWhenItRunsOutOfIterations) {
   const GridNet g = grid_net(20);
   const std::vector<double> q(g.net.bars.size(), 1.0);
