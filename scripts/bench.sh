@@ -17,6 +17,7 @@
 # Every time is also given as a ratio to the I/O floor's time per frame (x floor).
 # Prints a Markdown table; BENCH_DIR keeps the generated cases (default: a temporary folder).
 set -euo pipefail
+export LC_ALL=C  # '.' decimal points in $EPOCHREALTIME and awk
 root=$(cd "$(dirname "$0")/.." && pwd)
 sizes="10000 100000 1000000"
 frames=20
@@ -71,17 +72,31 @@ bench() {
       echo "${solver}_$key $(cat "$work/$name.$solver".* | awk -v k="$key" '$1 == k {print $2}' | median)" >>"$res"
     done
   done
+  # The command runs interleaved (slide -j1, -j2, floor -j1, -j2, then again): a shared machine's
+  # speed drifts over minutes, and each run of a round sees the same drift. Wall time from the
+  # shell's microsecond clock (time's %e has 10 ms steps: 7% of a 10k run).
+  for mode in slide floor; do
+    for j in 1 2; do : >"$work/$name.$mode.j$j"; done
+  done
+  for r in $(seq "$runs"); do
+    for mode in slide floor; do
+      for j in 1 2; do
+        local flag=""
+        [ "$mode" = floor ] && flag=--no-slide
+        rm -rf "$out/cli"
+        local t0=$EPOCHREALTIME
+        /usr/bin/time -f "%M" -o "$work/time" "$bin" $flag -j "$j" --patch "$patch" "$bind" "$@" \
+          -o "$out/cli" 2>"$work/log"
+        local t1=$EPOCHREALTIME
+        # The summary line "N frames slid in S s" times the frames alone, after the set-up.
+        echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.4f", b - a}') $(cat "$work/time")" \
+          "$(sed -n 's/.* in \([0-9.]*\) s -> .*/\1/p' "$work/log" | tail -1)" \
+          >>"$work/$name.$mode.j$j"
+      done
+    done
+  done
   for mode in slide floor; do
     for j in 1 2; do
-      local flag=""
-      [ "$mode" = floor ] && flag=--no-slide
-      for r in $(seq "$runs"); do
-        rm -rf "$out/cli"
-        /usr/bin/time -f "%e %M" -o "$work/time" "$bin" $flag -j "$j" --patch "$patch" "$bind" "$@" \
-          -o "$out/cli" 2>"$work/log"
-        # The summary line "N frames slid in S s" times the frames alone, after the set-up.
-        echo "$(cat "$work/time") $(sed -n 's/.* in \([0-9.]*\) s -> .*/\1/p' "$work/log" | tail -1)"
-      done >"$work/$name.$mode.j$j"
       echo "${mode}_seconds_j$j $(awk '{print $1}' "$work/$name.$mode.j$j" | median)" >>"$res"
       echo "${mode}_peak_kb_j$j $(awk '{print $2}' "$work/$name.$mode.j$j" | median)" >>"$res"
       echo "${mode}_frames_seconds_j$j $(awk '{print $3}' "$work/$name.$mode.j$j" | median)" >>"$res"
