@@ -90,6 +90,12 @@ TEST(ObjRead, TheFirstBadLineIsTheOneReported) {
             "t.obj:2: vertex coordinate 'x' is not a number");
   EXPECT_EQ(error_of(std::string("v 0 0 0\n\x00\nv 0 x 0\n", 18)),
             "t.obj:2: binary data (NUL byte): not a text OBJ file");
+  // Statements kept as text are not split, but a continuation on any of them is still refused.
+  EXPECT_EQ(error_of("v 0 0 0\nvt 0 0 \\\n0\n"),
+            "t.obj:2: line continuation '\\' is not supported; join the lines");
+  EXPECT_EQ(error_of("v 0 0 0\n\\\n"),
+            "t.obj:2: line continuation '\\' is not supported; join the lines");
+  EXPECT_EQ(error_of("v 0 0 0\nvt 0 0 # \\\ng a\\ \t\n"), "");
   // The smallest vertex used twice, in faces of a few corners and of many.
   EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 3 2 1 2 3\n"),
             "t.obj:4: face uses vertex 2 twice (degenerate face)");
