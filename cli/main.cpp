@@ -22,6 +22,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/allocator.h"
+#include "core/cores.h"
 #include "core/error.h"
 #include "core/version.h"
 #include "io/atomic_write.h"
@@ -435,7 +436,7 @@ int run(const CliOptions& o) {
     bind.obj.reset();
     bind.gltf.reset();
   }
-  unsigned threads = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
+  unsigned threads = o.threads == 0 ? usable_cores() : o.threads;
   // --no-slide measures the I/O floor of a run: no bind set-up, frames copied unchanged.
   const BindSetup setup =
       o.no_slide ? BindSetup{}
@@ -481,6 +482,9 @@ int run(const CliOptions& o) {
 
   const size_t count = chosen.size();
   threads = static_cast<unsigned>(std::min<size_t>(threads, count));
+  if (verbosity == cli::Verbosity::Verbose)
+    std::fprintf(stderr, "  %zu frames, %u at a time%s\n", count, threads,
+                 o.threads == 0 ? " (-j 0: the cores this task may use)" : "");
   cli::Progress progress(count, verbosity, isatty(STDERR_FILENO) != 0);
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
@@ -694,7 +698,8 @@ int main(int argc, char** argv) {
       ->group(method);
 
   auto* run_group = "Run";
-  app.add_option("-j,--threads", o.threads, "Frames processed at once; 0 = all cores")
+  app.add_option("-j,--threads", o.threads,
+                 "Frames processed at once; 0 = every core this task may use (its CPU affinity)")
       ->capture_default_str()
       ->check(CLI::Range(0u, 1024u))
       ->group(run_group);

@@ -60,6 +60,17 @@ check "one frame at a time gives identical bytes" same_tree "$tmp/t1" "$tmp/sing
 check "frames 1 and 6 (same input) give the same bytes" cmp "$tmp/t1/arm.0001.obj" "$tmp/t1/arm.0006.obj"
 check "frames 1 and 2 (different inputs) differ" bash -c "! cmp -s '$tmp/t1/arm.0001.obj' '$tmp/t1/arm.0002.obj'"
 
+# --- a task pinned to some cores -----------------------------------------------------------------
+# A farm node runs several tasks, each pinned to its share of the cores (taskset, cpusets): -j 0
+# (the default) takes the cores in the task's affinity, not every core of the node.
+if command -v taskset >/dev/null && taskset -c 0 true 2>/dev/null; then
+  taskset -c 0 "$bin" -v --patch data/elbow/patch.txt -o "$tmp/pinned" data/elbow/bind.obj \
+    "${frames[@]:0:4}" 2>"$tmp/pinned.log"
+  check "-j 0 pinned to one core runs one frame at a time" \
+    grep -qx '  4 frames, 1 at a time (-j 0: the cores this task may use)' "$tmp/pinned.log"
+  check "pinned, the bytes are the whole run's" cmp "$tmp/t1/arm.0004.obj" "$tmp/pinned/arm.0004.obj"
+fi
+
 # --- farm split ---------------------------------------------------------------------------------
 # As OpenCue or Deadline cut a shot of frames 1-24 into chunks of 10: 1-10, 11-20, 21-30 (the
 # last chunk runs past the shot's end and is clamped). Each task gets every frame file and its
