@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <numeric>
 #include <set>
 #include <sstream>
 
@@ -201,6 +202,34 @@ int attribute(const tinygltf::Primitive& prim, const char* name) {
   return it == prim.attributes.end() ? -1 : it->second;
 }
 
+// Raw vertex -> welded vertex: raw vertices at exactly the same position are one vertex, numbered
+// in the order of their first raw copy. Exact equality: seams split vertices without moving them
+// (data/README.md); a tolerance would risk joining genuinely distinct vertices. Sorted, not
+// inserted into a map: a map node per vertex cost a cache miss per level of the tree (the 100k
+// frame's read 3x slower than its OBJ's).
+std::vector<Index> weld_positions(const Positions3& raw) {
+  const Index n = static_cast<Index>(raw.size());
+  struct Keyed {
+    std::array<double, 3> key;
+    Index raw;
+  };
+  std::vector<Keyed> sorted(n);
+  for (Index r = 0; r < n; ++r) sorted[r] = {{raw[r][0], raw[r][1], raw[r][2]}, r};
+  // By position, then by raw id: each run of equal positions starts with its first raw copy.
+  // The keys sit beside their ids: a sort of ids looking positions up missed the cache.
+  std::sort(sorted.begin(), sorted.end(), [](const Keyed& a, const Keyed& b) {
+    return a.key < b.key || (!(b.key < a.key) && a.raw < b.raw);
+  });
+  std::vector<Index> first(n);  // raw id -> the first raw copy at its position
+  for (Index k = 0; k < n; ++k)
+    first[sorted[k].raw] =
+        k > 0 && !(sorted[k - 1].key < sorted[k].key) ? first[sorted[k - 1].raw] : sorted[k].raw;
+  std::vector<Index> welded(n);
+  Index count = 0;
+  for (Index r = 0; r < n; ++r) welded[r] = first[r] == r ? count++ : welded[first[r]];
+  return welded;
+}
+
 void check_attribute(const tinygltf::Model& model, int accessor, int type, Index count,
                      const std::string& where) {
   if (accessor < 0) return;
@@ -244,7 +273,7 @@ MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options)
   MeshFile out;
   out.path = path;
   out.format = ends_with_glb(path) ? MeshFormat::Glb : MeshFormat::Gltf;
-  std::map<std::array<double, 3>, Index> weld;
+  std::vector<std::vector<std::array<Index, 3>>> primitive_tris;  // per kept primitive
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
     const tinygltf::Primitive& prim = mesh.primitives[p];
     const std::string where = mesh_where + " primitive " + std::to_string(p);
@@ -279,27 +308,29 @@ MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options)
     check_attribute(model, gp.tangent_accessor, TINYGLTF_TYPE_VEC4, gp.raw_count,
                     where + ": TANGENT accessor " + std::to_string(gp.tangent_accessor));
     for (Index i = 0; i < gp.raw_count; ++i) {
-      const std::array<double, 3> key{pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]};
-      if (!std::isfinite(key[0]) || !std::isfinite(key[1]) || !std::isfinite(key[2]))
+      const double x = pos[3 * i], y = pos[3 * i + 1], z = pos[3 * i + 2];
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
         fail(pw, "vertex " + std::to_string(i) + " is not finite");
-      // Exact equality: seams split vertices without moving them (data/README.md); a tolerance
-      // would risk joining genuinely distinct vertices.
-      const auto [it, inserted] = weld.emplace(key, out.mesh.vertex_count());
-      if (inserted) out.mesh.positions.emplace_back(key[0], key[1], key[2]);
-      doc->welded.push_back(it->second);
-      doc->raw_positions.emplace_back(key[0], key[1], key[2]);
+      doc->raw_positions.emplace_back(x, y, z);
     }
-    const auto tris = primitive_triangles(model, prim, gp.raw_count, where);
+    primitive_tris.push_back(primitive_triangles(model, prim, gp.raw_count, where));
+    doc->primitives.push_back(gp);
+  }
+  doc->welded = weld_positions(doc->raw_positions);
+  for (size_t r = 0; r < doc->welded.size(); ++r)  // a welded vertex is at its first raw copy
+    if (doc->welded[r] == out.mesh.vertex_count())
+      out.mesh.positions.push_back(doc->raw_positions[r]);
+  for (size_t k = 0; k < doc->primitives.size(); ++k) {
+    GltfPrimitive& gp = doc->primitives[k];
     gp.first_triangle = out.mesh.face_count();
-    gp.triangle_count = static_cast<Index>(tris.size());
-    for (const auto& t : tris) {
+    gp.triangle_count = static_cast<Index>(primitive_tris[k].size());
+    for (const auto& t : primitive_tris[k]) {
       const std::array<Index, 3> raw{gp.raw_offset + t[0], gp.raw_offset + t[1],
                                      gp.raw_offset + t[2]};
       out.mesh.add_face({doc->welded[raw[0]], doc->welded[raw[1]], doc->welded[raw[2]]});
       doc->triangle_raw.push_back(raw);
-      doc->triangle_primitive.push_back(static_cast<int>(doc->primitives.size()));
+      doc->triangle_primitive.push_back(static_cast<int>(k));
     }
-    doc->primitives.push_back(gp);
   }
   if (out.mesh.face_count() == 0) fail(mesh_where, "has no triangles");
   out.gltf = std::move(doc);
