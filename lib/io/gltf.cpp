@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -202,34 +203,6 @@ int attribute(const tinygltf::Primitive& prim, const char* name) {
   return it == prim.attributes.end() ? -1 : it->second;
 }
 
-// Raw vertex -> welded vertex: raw vertices at exactly the same position are one vertex, numbered
-// in the order of their first raw copy. Exact equality: seams split vertices without moving them
-// (data/README.md); a tolerance would risk joining genuinely distinct vertices. Sorted, not
-// inserted into a map: a map node per vertex cost a cache miss per level of the tree (the 100k
-// frame's read 3x slower than its OBJ's).
-std::vector<Index> weld_positions(const Positions3& raw) {
-  const Index n = static_cast<Index>(raw.size());
-  struct Keyed {
-    std::array<double, 3> key;
-    Index raw;
-  };
-  std::vector<Keyed> sorted(n);
-  for (Index r = 0; r < n; ++r) sorted[r] = {{raw[r][0], raw[r][1], raw[r][2]}, r};
-  // By position, then by raw id: each run of equal positions starts with its first raw copy.
-  // The keys sit beside their ids: a sort of ids looking positions up missed the cache.
-  std::sort(sorted.begin(), sorted.end(), [](const Keyed& a, const Keyed& b) {
-    return a.key < b.key || (!(b.key < a.key) && a.raw < b.raw);
-  });
-  std::vector<Index> first(n);  // raw id -> the first raw copy at its position
-  for (Index k = 0; k < n; ++k)
-    first[sorted[k].raw] =
-        k > 0 && !(sorted[k - 1].key < sorted[k].key) ? first[sorted[k - 1].raw] : sorted[k].raw;
-  std::vector<Index> welded(n);
-  Index count = 0;
-  for (Index r = 0; r < n; ++r) welded[r] = first[r] == r ? count++ : welded[first[r]];
-  return welded;
-}
-
 void check_attribute(const tinygltf::Model& model, int accessor, int type, Index count,
                      const std::string& where) {
   if (accessor < 0) return;
@@ -243,6 +216,42 @@ void check_attribute(const tinygltf::Model& model, int accessor, int type, Index
 }
 
 }  // namespace
+
+// An open-addressing table over the positions' bits: a std::map node per vertex had cost a cache
+// miss per level of the tree (a 100k GLB frame read 3.3x slower than now).
+std::vector<Index> weld_positions(const Positions3& raw) {
+  const size_t n = raw.size();
+  // Adding +0 turns -0 into +0, so equal coordinates have equal bits.
+  const auto bits = [](double x) {
+    std::uint64_t b;
+    const double y = x + 0.0;
+    std::memcpy(&b, &y, sizeof b);
+    return b;
+  };
+  size_t capacity = 16;
+  while (capacity < 2 * n) capacity *= 2;
+  std::vector<Index> slot(capacity, -1);  // raw id of the first copy at a position, or -1
+  std::vector<Index> welded(n);
+  Index count = 0;
+  for (size_t r = 0; r < n; ++r) {
+    const Vec3& p = raw[r];
+    std::uint64_t h = bits(p[0]) * 0x9E3779B97F4A7C15ULL;
+    h = (h ^ (h >> 29) ^ bits(p[1])) * 0xBF58476D1CE4E5B9ULL;
+    h = (h ^ (h >> 31) ^ bits(p[2])) * 0x94D049BB133111EBULL;
+    for (size_t k = (h ^ (h >> 32)) & (capacity - 1);; k = (k + 1) & (capacity - 1)) {
+      if (slot[k] < 0) {
+        slot[k] = static_cast<Index>(r);
+        welded[r] = count++;
+        break;
+      }
+      if (raw[slot[k]] == p) {
+        welded[r] = welded[slot[k]];
+        break;
+      }
+    }
+  }
+  return welded;
+}
 
 MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options) {
   const std::string bytes = read_file(path);

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/mesh_file.h"
 
@@ -27,6 +28,12 @@ namespace skinslide {
 ///        element out of range, a non-finite position; with several meshes and no choice, the
 ///        message lists them with their primitive and vertex counts.
 MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options);
+
+/// Raw vertex -> welded vertex: raw vertices (split at UV seams) at exactly the same position are
+/// one vertex, numbered in the order of their first raw copy. Exact equality: seams split
+/// vertices without moving them (data/README.md), and a tolerance would risk joining genuinely
+/// distinct vertices; -0 and +0 are the same coordinate. \pre finite positions
+std::vector<Index> weld_positions(const Positions3& raw);
 
 /// Writes `frame`'s document with the slid vertices moved: every raw copy of a moved welded
 /// vertex gets its new position; NORMAL, and TANGENT xyz (w kept), are the frame's normals of

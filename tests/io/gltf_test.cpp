@@ -4,6 +4,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <random>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -184,6 +186,32 @@ TEST(GltfRead, HandmadeFileDecodesEveryAccessorKind) {
   // Normalized bytes: 127 -> 1, -127 -> -1.
   const std::vector<double> n1 = gltf_accessor_values(f.gltf->model, 4, "test");
   EXPECT_EQ(n1, (std::vector<double>{0, 0, 1, 0, 0, 1, -1, 0, 0, 0, -1, 0}));
+}
+
+// Welding numbers each position by its first raw copy, joins only exactly equal positions, and
+// takes -0 and +0 as one coordinate; checked by hand, then against an ordered map on positions
+// with many repeats.
+TEST(GltfRead, WeldingJoinsExactlyEqualPositionsInFirstCopyOrder) {
+  const Positions3 raw = {
+      {1, 2, 3}, {0, 0, 0}, {1, 2, 3}, {-0.0, 0, -0.0}, {1, 2, std::nextafter(3.0, 4.0)},
+      {0, 0, 0}};
+  EXPECT_EQ(weld_positions(raw), (std::vector<Index>{0, 1, 0, 1, 2, 1}));
+  std::mt19937 rng{7};
+  std::uniform_int_distribution<int> pick(0, 999);
+  Positions3 many;
+  for (int i = 0; i < 20000; ++i) {
+    const int k = pick(rng);  // 1000 positions, each about 20 times
+    many.emplace_back(k % 10 - 4.5, (k / 10) % 10 * 0.1, k / 100 == 0 ? -0.0 : k / 100 * 1e-3);
+  }
+  std::map<std::array<double, 3>, Index> first;
+  std::vector<Index> expected;
+  for (const Vec3& p : many) {
+    const auto [it, inserted] =
+        first.emplace(std::array<double, 3>{p[0], p[1], p[2]}, static_cast<Index>(first.size()));
+    expected.push_back(it->second);
+  }
+  EXPECT_EQ(weld_positions(many), expected);
+  EXPECT_TRUE(weld_positions({}).empty());
 }
 
 TEST(GltfRead, MeshChoiceByNameOrIndexAndAListWhenAmbiguous) {
