@@ -285,25 +285,8 @@ Positions2 solve_bar_net_multigrid(const BarNet& net, const std::vector<double>&
   return scatter(net, s.free_id, x, positions);
 }
 
-std::shared_ptr<const AggregationMultigrid> frame_net_multigrid(const BarNet& net) {
-  const FreeSystem s = free_system(net);
-  const Index rows = static_cast<Index>(s.free_nodes.size());
-  if (rows == 0) return nullptr;
-  return std::make_shared<const AggregationMultigrid>(unit_pattern(net, s.free_id, rows));
-}
-
-FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions,
-                               std::shared_ptr<const AggregationMultigrid> multigrid)
-    : FrameNetSolver(std::move(net), std::move(positions), FrameNetMethod::Multigrid, {},
-                     std::move(multigrid)) {}
-
 FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
                                const std::vector<Index>& node_order)
-    : FrameNetSolver(std::move(net), std::move(positions), method, node_order, nullptr) {}
-
-FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
-                               const std::vector<Index>& node_order,
-                               std::shared_ptr<const AggregationMultigrid> multigrid)
     : net_(std::move(net)), method_(method), start_(std::move(positions)) {
   SKINSLIDE_CHECK(start_.size() == static_cast<size_t>(net_.node_count), "one position per node");
   FreeSystem s = free_system(net_);
@@ -312,8 +295,7 @@ FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod 
   const Index rows = static_cast<Index>(free_nodes_.size());
   pattern_ = unit_pattern(net_, free_id_, rows);
   if (rows > 0 && method_ == FrameNetMethod::Multigrid)
-    multigrid_ =
-        multigrid ? std::move(multigrid) : std::make_shared<const AggregationMultigrid>(pattern_);
+    multigrid_ = std::make_shared<const AggregationMultigrid>(pattern_);
   if (rows > 0 && method_ == FrameNetMethod::Cholesky) {
     // A given order is restricted to this net's free nodes: eliminating a principal submatrix in
     // the order of the whole creates no more fill than the whole had.
@@ -359,6 +341,14 @@ FrameNetSolver::FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod 
       for (Index& k : bar)
         if (k >= 0) k = position[k];
   }
+}
+
+FrameNetSolver FrameNetSolver::starting_at(Positions2 positions) && {
+  SKINSLIDE_CHECK(positions.size() == static_cast<size_t>(net_.node_count),
+                  "one position per node");
+  FrameNetSolver out = std::move(*this);
+  out.start_ = std::move(positions);
+  return out;
 }
 
 FrameNetSolution FrameNetSolver::solve(const std::vector<double>& q,

@@ -76,10 +76,11 @@ class FrameNetSolver {
   /// \throw Error(Numeric) when the symbolic analysis fails.
   FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
                  const std::vector<Index>& node_order = {});
-  /// A Multigrid solver whose hierarchy was built beforehand by frame_net_multigrid(net), e.g. on
-  /// another thread while `positions` were being solved. The same solver as the one above.
-  FrameNetSolver(BarNet net, Positions2 positions,
-                 std::shared_ptr<const AggregationMultigrid> multigrid);
+  /// This solver warm-started at other positions (the fixed nodes' entries included): the
+  /// same system, slots, ordering and factor or levels, moved over instead of rebuilt. None of
+  /// them depends on the positions, so a spare thread can build a solver while the positions it
+  /// is to start from are still being solved.
+  FrameNetSolver starting_at(Positions2 positions) &&;
   /// \param q one force density per bar (> 0)
   /// \return #nodes positions: fixed nodes as given, free nodes in equilibrium
   /// \throw Error(Numeric) when the system is singular or the result is not finite.
@@ -89,9 +90,6 @@ class FrameNetSolver {
   Index free_node_count() const { return static_cast<Index>(free_nodes_.size()); }
 
  private:
-  FrameNetSolver(BarNet net, Positions2 positions, FrameNetMethod method,
-                 const std::vector<Index>& node_order,
-                 std::shared_ptr<const AggregationMultigrid> multigrid);
   BarNet net_;
   FrameNetMethod method_;
   Positions2 start_;               // #nodes
@@ -106,10 +104,6 @@ class FrameNetSolver {
   std::shared_ptr<const Symbolic> symbolic_;               // K_ff's symbolic factor (Cholesky)
   std::shared_ptr<const AggregationMultigrid> multigrid_;  // its levels (multigrid)
 };
-
-/// The hierarchy a Multigrid FrameNetSolver of `net` solves with. It depends on the bars and on
-/// which nodes are fixed, not on any position. Null when every node is fixed.
-std::shared_ptr<const AggregationMultigrid> frame_net_multigrid(const BarNet& net);
 
 /// How many triangles of a net do not keep the orientation of the majority.
 struct Folds {

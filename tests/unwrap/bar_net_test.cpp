@@ -218,26 +218,33 @@ TEST(BarNet, MultigridAgreesWithCholeskyOnRandomNetsAndKeepsAnExactWarmStart) {
   }
 }
 
-// A hierarchy built on its own (as a spare thread does during the set-up) solves bit for bit as
-// the one the solver builds itself.
-TEST(BarNet, APrebuiltMultigridHierarchySolvesTheSameBits) {
+// A solver built before its warm start was known (as a spare thread builds one during the
+// set-up) and then started at it solves bit for bit as one built with it, by either method.
+TEST(BarNet, ASolverStartedLaterSolvesTheSameBits) {
   std::mt19937 rng{5};
   std::uniform_real_distribution<double> uq(1e-3, 1.0);
   const GridNet g = grid_net(30);
-  const FrameNetSolver own(g.net, g.start, FrameNetMethod::Multigrid);
-  const auto hierarchy = frame_net_multigrid(g.net);
-  ASSERT_TRUE(hierarchy);
-  const FrameNetSolver prebuilt(g.net, g.start, hierarchy);
-  EXPECT_EQ(prebuilt.method(), FrameNetMethod::Multigrid);
   std::vector<double> q(g.net.bars.size());
   for (double& v : q) v = uq(rng);
-  const FrameNetSolution a = own.solve(q, {1e-12, 200}), b = prebuilt.solve(q, {1e-12, 200});
-  EXPECT_GT(a.iterations, 0);
-  EXPECT_EQ(a.iterations, b.iterations);
-  EXPECT_EQ(a.positions, b.positions);
+  const Positions2 elsewhere(g.start.size(), Vec2(0.25, 0.75));
+  for (FrameNetMethod method : {FrameNetMethod::Multigrid, FrameNetMethod::Cholesky}) {
+    SCOPED_TRACE(static_cast<int>(method));
+    const FrameNetSolver own(g.net, g.start, method);
+    const FrameNetSolver later = FrameNetSolver(g.net, elsewhere, method).starting_at(g.start);
+    EXPECT_EQ(later.method(), method);
+    const FrameNetSolution a = own.solve(q, {1e-12, 200}), b = later.solve(q, {1e-12, 200});
+    if (method == FrameNetMethod::Multigrid) {
+      EXPECT_GT(a.iterations, 0);
+    }
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_EQ(a.positions, b.positions);
+  }
+  // With nothing to solve, the solution is the positions it was started at.
   BarNet all_fixed = g.net;
   all_fixed.fixed.assign(all_fixed.node_count, 1);
-  EXPECT_FALSE(frame_net_multigrid(all_fixed));
+  const FrameNetSolver fixed =
+      FrameNetSolver(all_fixed, elsewhere, FrameNetMethod::Multigrid).starting_at(g.start);
+  EXPECT_EQ(fixed.solve(q, {}).positions, g.start);
 }
 
 TEST(BarNet, MultigridFallsBackToADirectSolveWhenItRunsOutOfIterations) {
