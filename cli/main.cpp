@@ -55,6 +55,9 @@ struct CliOptions {
   std::string dump_dir;     // --dump: EXR images of the nets; empty = none
   std::string preview_dir;  // --preview: PNG pictures of the nets; empty = none
   int preview_size = 1024;
+  std::string method = "elastic";
+  int max_iterations = ElasticOptions{}.max_iterations;
+  double tolerance = ElasticOptions{}.tolerance;
   std::string density = "inverse";
   std::string holes = "fill";
   double q_floor = 1e-3;
@@ -228,6 +231,9 @@ std::vector<size_t> chosen_frames(const std::vector<FrameRange>& ranges,
 
 SlideOptions slide_options(const CliOptions& o) {
   SlideOptions s;
+  s.method = parse_method(o.method);
+  s.elastic.max_iterations = o.max_iterations;
+  s.elastic.tolerance = o.tolerance;
   s.density = parse_density(o.density);
   s.holes = parse_holes(o.holes);
   s.q_floor = o.q_floor;
@@ -366,29 +372,62 @@ std::string solvers_used(const BindSetup& setup, const FrameResult& result) {
   return text;
 }
 
+// One patch of an elastic frame, for -v.
+std::string elastic_patch_line(const PatchFrameReport& r) {
+  return "elastic " + std::to_string(r.iterations) + " it (" + r.stop + "), energy " +
+         fmt(r.energy_before) + " -> " + fmt(r.energy_after) + ", held " +
+         std::to_string(r.held) + ", flips " + std::to_string(r.slid_flips) + ", slide max " +
+         fmt(r.max_slide) + " mean " + fmt(r.mean_slide);
+}
+
+// The elastic frame's summary: most steps, and the energy left as a share of the frame's.
+std::string elastic_summary(const BindSetup& setup, const FrameResult& result) {
+  int iterations = 0, flips = 0;
+  double before = 0, after = 0;
+  for (size_t p = 0; p < result.patches.size(); ++p) {
+    if (setup.patches[p].skipped) continue;
+    const PatchFrameReport& r = result.patches[p];
+    iterations = std::max(iterations, r.iterations);
+    flips += r.slid_flips;
+    before += r.energy_before;
+    after += r.energy_after;
+  }
+  return "elastic " + std::to_string(iterations) + " it, energy left " +
+         (before > 0 ? fmt(100 * after / before) + "%" : std::string("0")) + ", flips " +
+         std::to_string(flips);
+}
+
 std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
                                       const FrameResult& result, const std::string& frame_path,
                                       const std::string& out_path) {
   const FrameSummary s = summarise(result);
+  const bool elastic = setup.options.method == SlideMethod::Elastic;
   std::vector<std::string> lines;
   lines.push_back("skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
-                  " patches, " + solvers_used(setup, result) + ", max slide " + fmt(s.max_slide) +
-                  ", " + std::to_string(s.fallbacks) + " fallbacks -> " + out_path);
+                  " patches, " +
+                  (elastic ? elastic_summary(setup, result) : solvers_used(setup, result)) +
+                  ", max slide " + fmt(s.max_slide) +
+                  (elastic ? std::string() : ", " + std::to_string(s.fallbacks) + " fallbacks") +
+                  " -> " + out_path);
   if (o.verbose)
     for (size_t p = 0; p < result.patches.size(); ++p) {
       const PatchFrameReport& r = result.patches[p];
-      lines.push_back("  patch " + std::to_string(p) + ": " +
-                      (setup.patches[p].skipped
-                           ? std::string("skipped (all vertices on loops)")
-                           : solver_label(setup.patches[p].solver->method(), r.cg_iterations) +
-                                 (setup.patches[p].solver->method() == FrameNetMethod::Cholesky
-                                      ? ""
-                                      : ", residual " + fmt(r.cg_residual)) +
-                                 (r.direct_solve ? " (solved directly)" : "") + ", located " +
-                                 std::to_string(r.located_in_image) + " + " +
-                                 std::to_string(r.located_fallback) + " fallback, net flips " +
-                                 std::to_string(r.frame_net_flips) + ", slide max " +
-                                 fmt(r.max_slide) + " mean " + fmt(r.mean_slide)));
+      const PatchNet& n = setup.patches[p];
+      std::string line;
+      if (n.skipped)
+        line = "skipped (all vertices on loops)";
+      else if (elastic)
+        line = elastic_patch_line(r);
+      else
+        line = solver_label(n.solver->method(), r.cg_iterations) +
+               (n.solver->method() == FrameNetMethod::Cholesky
+                    ? ""
+                    : ", residual " + fmt(r.cg_residual)) +
+               (r.direct_solve ? " (solved directly)" : "") + ", located " +
+               std::to_string(r.located_in_image) + " + " + std::to_string(r.located_fallback) +
+               " fallback, net flips " + std::to_string(r.frame_net_flips) + ", slide max " +
+               fmt(r.max_slide) + " mean " + fmt(r.mean_slide);
+      lines.push_back("  patch " + std::to_string(p) + ": " + line);
     }
   return lines;
 }
@@ -455,9 +494,13 @@ int run(const CliOptions& o) {
                  o.bind.c_str());
   else if (verbosity != cli::Verbosity::Quiet)
     std::fprintf(stderr,
-                 "skinslide: %s: %zu patches, %zu sliding vertices (density %s, holes %s)\n",
-                 o.bind.c_str(), setup.patches.size(), sliding, to_string(options.density).c_str(),
-                 to_string(options.holes).c_str());
+                 "skinslide: %s: %zu patches, %zu sliding vertices (%s)\n", o.bind.c_str(),
+                 setup.patches.size(), sliding,
+                 options.method == SlideMethod::Paper
+                     ? ("method paper, density " + to_string(options.density) + ", holes " +
+                        to_string(options.holes))
+                           .c_str()
+                     : "method elastic");
   if (verbosity == cli::Verbosity::Verbose)
     for (size_t p = 0; p < setup.patches.size(); ++p) {
       const PatchNet& n = setup.patches[p];
@@ -646,6 +689,24 @@ int main(int argc, char** argv) {
       ->group(out);
 
   auto* method = "Method";
+  app.add_option("--method", o.method,
+                 "elastic: the free vertices relax in a fixed chart of each patch towards the "
+                 "bind's edge lengths, with fold-free, energy-decreasing steps; paper: Yang & "
+                 "Zhang's bar nets (the options below --tolerance)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"elastic", "paper"}))
+      ->group(method);
+  app.add_option("--max-iterations", o.max_iterations,
+                 "Elastic: steps per patch and frame at most")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000))
+      ->group(method);
+  app.add_option("--tolerance", o.tolerance,
+                 "Elastic: stop once two steps in a row each lower the energy by less than this "
+                 "fraction of the frame's")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(method);
   app.add_option(
          "--density", o.density,
          "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
@@ -785,6 +846,17 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     o.rig = anim->count() > 0;
+    // Options of one method only are refused with the other, naming both.
+    const bool paper = o.method == "paper";
+    for (const char* name : {"--density", "--holes", "--q-floor", "--frame-solver",
+                             "--cg-tolerance", "--cg-max-iterations", "--locate", "--corners"})
+      if (paper == false && app.count(name) > 0)
+        throw CLI::ValidationError(name, std::string("applies to --method paper only, not to "
+                                                     "--method elastic"));
+    for (const char* name : {"--max-iterations", "--tolerance"})
+      if (paper && app.count(name) > 0)
+        throw CLI::ValidationError(name, std::string("applies to --method elastic only, not to "
+                                                     "--method paper"));
     if (o.no_slide && (o.rig || !o.report.empty() || !o.dump_dir.empty() || !o.preview_dir.empty()))
       throw CLI::ValidationError(
           "--no-slide",

@@ -213,8 +213,8 @@ class LocalIds {
 };
 
 PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const SlideOptions& options,
-                   const PatchChoice& choice, const std::vector<char>& pinned, LocalIds& local_ids,
-                   bool spare_thread) {
+                   const PatchChoice& choice, const std::vector<char>& pinned,
+                   const std::vector<double>& weight, LocalIds& local_ids, bool spare_thread) {
   PatchNet patch;
   patch.selection = comp.selection;
   patch.faces = comp.faces;
@@ -271,6 +271,20 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   patch.skipped = patch.free_vertices.empty();
   if (patch.skipped) return patch;  // nothing to move: no unwrap needed, whatever the loops
   patch.topology = triangle_topology(patch.triangles, static_cast<Index>(patch.vertices.size()));
+  if (options.method == SlideMethod::Elastic) {
+    // A vertex of weight 0 is held where the frame puts it, and the skin around it slides.
+    std::vector<Index> movable;
+    for (Index v : patch.free_vertices)
+      if (weight.empty() || weight[patch.vertices[v]] > 0) movable.push_back(v);
+    patch.bind_lengths = bar_lengths(points, patch.bars);
+    patch.elastic = std::make_shared<const ElasticSetup>(
+        elastic_setup(points, patch.triangles, patch.loops, patch.outer_loop, movable));
+    patch.bind_net.assign(patch.elastic->chart.uv.begin(),
+                          patch.elastic->chart.uv.begin() +
+                              static_cast<std::ptrdiff_t>(patch.vertices.size()));
+    patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
+    return patch;
+  }
 
   const auto& outer = patch.loops[patch.outer_loop];
   SquareBoundary square;
@@ -384,7 +398,8 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
     LocalIds local_ids(nv);
     for (size_t c; (c = next++) < comps.size();) {
       try {
-        nets[c] = patch_net(bind, comps[c], options, choices[c], pinned, local_ids, spare_thread);
+        nets[c] = patch_net(bind, comps[c], options, choices[c], pinned, setup.weight, local_ids,
+                            spare_thread);
       } catch (const Error& e) {
         failed[c] = std::make_exception_ptr(Error(
             e.kind(), "patch " + std::to_string(c) + " (" + namer(comps[c].faces.front()) + ", " +

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "elastic/relax.h"
 #include "locate/id_raster.h"
 #include "locate/locate.h"
 #include "mesh/patches.h"
@@ -41,7 +42,10 @@ struct PatchNet {
   double bind_diagonal = 0;          ///< bounding-box diagonal of the patch in the bind
   int bind_net_flips = 0;            ///< bind-net triangles of the minority orientation
   Index selection = 0;               ///< which selection (--patch file) it came from
-  std::shared_ptr<const FrameNetSolver> solver;  ///< reused by every frame
+  std::shared_ptr<const FrameNetSolver> solver;  ///< the paper's frame nets, reused by every frame
+  /// The elastic method's chart and rest shape (SlideMethod::Elastic; then `bind_net` is the
+  /// chart's positions of the patch vertices and `solver` is empty).
+  std::shared_ptr<const ElasticSetup> elastic;
 };
 
 struct BindSetup {

@@ -4,6 +4,14 @@
 
 namespace skinslide {
 
+SlideMethod parse_method(const std::string& name) {
+  if (name == "elastic") return SlideMethod::Elastic;
+  if (name == "paper") return SlideMethod::Paper;
+  throw Error(ErrorKind::Usage, "unknown method '" + name + "' (elastic, paper)");
+}
+
+std::string to_string(SlideMethod m) { return m == SlideMethod::Paper ? "paper" : "elastic"; }
+
 Density parse_density(const std::string& name) {
   if (name == "paper") return Density::Paper;
   if (name == "inverse" || name == "length") return Density::Inverse;

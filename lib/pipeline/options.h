@@ -6,8 +6,16 @@
 #include <vector>
 
 #include "core/types.h"
+#include "elastic/relax.h"
 
 namespace skinslide {
+
+/// Which slide a run makes (README "The method, exactly"). Everything before (patches, loops, pins,
+/// weights) and after (transfer, write, report) is shared.
+enum class SlideMethod {
+  Elastic,  ///< the default: the free vertices relax in a fixed chart of the patch
+  Paper,    ///< Yang & Zhang 2010: bind and frame flattened by bar nets, bind points located
+};
 
 /// How a bar's force density q follows its length L (Lmin, Lmax per patch).
 enum class Density {
@@ -47,6 +55,9 @@ enum class Locate {
 };
 
 struct SlideOptions {
+  SlideMethod method = SlideMethod::Elastic;
+  ElasticOptions elastic;  ///< SlideMethod::Elastic only
+  // The rest: SlideMethod::Paper only.
   Density density = Density::Inverse;
   Holes holes = Holes::Fill;
   double q_floor = 1e-3;  ///< lower bound of q (Paper, Inverse)
@@ -78,10 +89,12 @@ struct SlideControls {
   std::vector<Index> outer_loop_vertices;
 };
 
+SlideMethod parse_method(const std::string& name);         ///< throws Usage on an unknown name
 Density parse_density(const std::string& name);           ///< throws Usage on an unknown name
 Holes parse_holes(const std::string& name);               ///< throws Usage on an unknown name
 FrameSolver parse_frame_solver(const std::string& name);  ///< throws Usage on an unknown name
 Locate parse_locate(const std::string& name);             ///< throws Usage on an unknown name
+std::string to_string(SlideMethod m);
 std::string to_string(Density d);
 std::string to_string(Holes h);
 std::string to_string(FrameSolver s);

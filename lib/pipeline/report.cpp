@@ -83,7 +83,7 @@ std::string inline_array(const std::vector<std::string>& items) {
 
 // What --frame-solver auto chose for the patch, in the option's words.
 std::string solver_name(const PatchNet& p) {
-  if (p.skipped) return "none";
+  if (p.skipped || !p.solver) return "none";
   switch (p.solver->method()) {
     case FrameNetMethod::Cholesky:
       return "cholesky";
@@ -105,8 +105,18 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   std::vector<std::string> files;
   for (const std::string& f : run.patch_files) files.push_back(quoted(f));
   root.add("patch_files", inline_array(files));
+  const bool elastic = o.method == SlideMethod::Elastic;
+  if (elastic)
+    root.add("options",
+             Object(2)
+                 .add("method", quoted(to_string(o.method)))
+                 .add("max_iterations", number(static_cast<long long>(o.elastic.max_iterations)))
+                 .add("tolerance", number(o.elastic.tolerance))
+                 .str());
+  else
   root.add("options",
            Object(2)
+               .add("method", quoted(to_string(o.method)))
                .add("density", quoted(to_string(o.density)))
                .add("holes", quoted(to_string(o.holes)))
                .add("q_floor", number(o.q_floor))
@@ -129,6 +139,26 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
     std::vector<std::string> corners;
     if (!p.skipped)
       for (Index c : p.corners) corners.push_back(number(static_cast<long long>(p.vertices[c])));
+    if (elastic) {
+      patches.push_back(
+          Object(4)
+              .add("faces", number(static_cast<long long>(p.faces.size())))
+              .add("vertices", number(static_cast<long long>(p.vertices.size())))
+              .add("free", number(static_cast<long long>(p.free_vertices.size())))
+              .add("pinned", number(static_cast<long long>(p.pinned.size())))
+              .add("moving", number(static_cast<long long>(p.elastic ? p.elastic->movable.size()
+                                                                     : 0)))
+              .add("loops", number(static_cast<long long>(p.loops.size())))
+              .add("outer_loop_start",
+                   number(static_cast<long long>(p.vertices[p.loops[p.outer_loop].front()])))
+              .add("outer_loop_chosen", boolean(p.outer_loop_chosen))
+              .add("skipped", boolean(p.skipped))
+              .add("chart_weights", quoted(!p.elastic                           ? "none"
+                                           : p.elastic->chart.uniform_weights ? "uniform"
+                                                                              : "mean value"))
+              .str());
+      continue;
+    }
     patches.push_back(Object(4)
                           .add("faces", number(static_cast<long long>(p.faces.size())))
                           .add("vertices", number(static_cast<long long>(p.vertices.size())))
@@ -147,13 +177,36 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   }
   root.add("patches", array(patches, 2));
 
-  long long moved = 0, iterations = 0, direct = 0, fallbacks = 0, flips = 0;
+  long long moved = 0, iterations = 0, direct = 0, fallbacks = 0, flips = 0, held = 0;
   double max_slide = 0;
   double read = 0, solve = 0, locate = 0, transfer = 0, write = 0;
   std::vector<std::string> frames;
   for (const ReportFrame& f : run.frames) {
     std::vector<std::string> fp;
     for (const PatchFrameReport& r : f.patches) {
+      if (elastic) {
+        fp.push_back(Object(8)
+                         .add("energy_before", number(r.energy_before))
+                         .add("energy_after", number(r.energy_after))
+                         .add("iterations", number(static_cast<long long>(r.iterations)))
+                         .add("stop", quoted(r.stop.empty() ? "skipped" : r.stop))
+                         .add("held", number(static_cast<long long>(r.held)))
+                         .add("flips", number(static_cast<long long>(r.slid_flips)))
+                         .add("moved", number(static_cast<long long>(r.moved)))
+                         .add("max_slide", number(r.max_slide))
+                         .add("mean_slide", number(r.mean_slide))
+                         .add("spread_frame", number(r.spread_frame))
+                         .add("spread_slid", number(r.spread_slid))
+                         .str());
+        moved += r.moved;
+        iterations += r.iterations;
+        held += r.held;
+        flips += r.slid_flips;
+        max_slide = std::max(max_slide, r.max_slide);
+        solve += r.solve_seconds;
+        transfer += r.transfer_seconds;
+        continue;
+      }
       fp.push_back(Object(8)
                        .add("cg_iterations", number(static_cast<long long>(r.cg_iterations)))
                        .add("cg_residual", number(r.cg_residual))
@@ -186,6 +239,16 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
                          .str());
   }
   root.add("frames", array(frames, 2));
+  if (elastic)
+    root.add("totals", Object(2)
+                           .add("frames", number(static_cast<long long>(run.frames.size())))
+                           .add("moved", number(moved))
+                           .add("iterations", number(iterations))
+                           .add("held", number(held))
+                           .add("flips", number(flips))
+                           .add("max_slide", number(max_slide))
+                           .str());
+  else
   root.add("totals", Object(2)
                          .add("frames", number(static_cast<long long>(run.frames.size())))
                          .add("moved", number(moved))

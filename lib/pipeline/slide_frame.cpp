@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <Eigen/Geometry>
+
 #include "core/check.h"
 #include "core/error.h"
 #include "locate/locate.h"
@@ -35,6 +37,79 @@ double edge_log_spread(const PatchNet& patch, const Positions3& points) {
   return std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean));
 }
 
+// Slid triangles whose normal turns against the frame's own (frame triangles with area only).
+int turned_triangles(const PatchNet& patch, const Positions3& frame, const Positions3& slid) {
+  int turned = 0;
+  for (const Triangle& t : patch.triangles) {
+    const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
+    if (nf.isZero(0)) continue;
+    const Vec3 ns = (slid[t[1]] - slid[t[0]]).cross(slid[t[2]] - slid[t[0]]);
+    turned += ns.dot(nf) <= 0 ? 1 : 0;
+  }
+  return turned;
+}
+
+// The elastic method: relax in the chart, then each vertex of weight w < 1 goes back a fraction
+// 1 - w of the way to its start in the chart, so that it stays on the frame's surface.
+PatchFrameReport slide_patch_elastic(const BindSetup& setup, const PatchNet& patch,
+                                     const Positions3& points, const FrameExtras& extras,
+                                     SlidVertices& moved) {
+  PatchFrameReport report;
+  const ElasticSetup& elastic = *patch.elastic;
+  auto t0 = std::chrono::steady_clock::now();
+  ElasticResult relaxed = relax_patch(elastic, points, setup.options.elastic);
+  report.solve_seconds = seconds_since(t0);
+  report.energy_before = relaxed.energy_before;
+  report.energy_after = relaxed.energy_after;
+  report.iterations = relaxed.iterations;
+  report.held = relaxed.held;
+  report.stop = relaxed.stop;
+  t0 = std::chrono::steady_clock::now();
+  const Chart& chart = elastic.chart;
+  report.frame_net = patch.bind_net;
+  Positions3 output = points;
+  double total = 0;
+  for (size_t i = 0; i < elastic.movable.size(); ++i) {
+    const Index v = elastic.movable[i];
+    const double w = setup.weight.empty() ? 1.0 : setup.weight[patch.vertices[v]];
+    ChartPoint where = relaxed.where[i];
+    Vec2 uv = relaxed.uv[i];
+    Vec3 p = relaxed.position[i];
+    if (w != 1) {
+      uv = chart.uv[v] + w * (uv - chart.uv[v]);
+      where = locate_in_chart(chart, uv, where.triangle);
+      const Triangle& tri = chart.triangles[where.triangle];
+      p = where.weight[0] * points[tri[0]] + where.weight[1] * points[tri[1]] +
+          where.weight[2] * points[tri[2]];
+    }
+    if (!p.allFinite())
+      throw Error(ErrorKind::Numeric, "vertex " + std::to_string(patch.vertices[v]) +
+                                          ": the slid position is not finite");
+    report.frame_net[v] = uv;
+    output[v] = p;
+    ++report.moved;
+    ++report.located_in_image;
+    const Index fan = patch.triangle_fan[where.triangle];
+    moved.vertex.push_back(patch.vertices[v]);
+    moved.sample.push_back(
+        SurfaceSample{patch.triangle_face[where.triangle], {0, fan + 1, fan + 2}, where.weight});
+    moved.position.push_back(p);
+    const double d = (p - points[v]).norm();
+    report.max_slide = std::max(report.max_slide, d);
+    total += d;
+  }
+  report.mean_slide =
+      elastic.movable.empty() ? 0.0 : total / static_cast<double>(elastic.movable.size());
+  report.slid_flips = turned_triangles(patch, points, output);
+  if (extras.edge_spread) {
+    report.spread_frame = edge_log_spread(patch, points);
+    report.spread_slid = edge_log_spread(patch, output);
+  }
+  if (extras.id_image) report.id_image = id_raster(report.frame_net, patch.triangles, setup.options.lookup_size);
+  report.transfer_seconds = seconds_since(t0);
+  return report;
+}
+
 PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, const Positions3& frame,
                              const FrameExtras& extras, SlidVertices& moved) {
   PatchFrameReport report;
@@ -42,6 +117,7 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
   const SlideOptions& opt = setup.options;
   Positions3 points(patch.vertices.size());
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
+  if (patch.elastic) return slide_patch_elastic(setup, patch, points, extras, moved);
 
   auto t0 = std::chrono::steady_clock::now();
   const std::vector<double> q =

@@ -1,6 +1,7 @@
 // One frame: frame net, point location (a walk or an ID image), transfer.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/types.h"
@@ -27,10 +28,19 @@ struct PatchFrameReport {
   /// Computed only when FrameExtras::edge_spread asks for it (0 otherwise).
   double spread_frame = 0;
   double spread_slid = 0;
-  double solve_seconds = 0;     ///< wall time of the frame net (not deterministic)
+  /// Elastic method (SlideMethod::Elastic) only: the relaxation's figures (relax.h).
+  double energy_before = 0;  ///< the frame's elastic energy against the bind
+  double energy_after = 0;   ///< after the slide, never above energy_before
+  int iterations = 0;        ///< steps taken
+  int held = 0;              ///< vertex-steps held in place to keep a step a descent
+  int slid_flips = 0;        ///< slid triangles whose normal turns against the frame's (want 0)
+  std::string stop;          ///< why the relaxation stopped
+  double solve_seconds = 0;     ///< wall time of the frame net or relaxation (not deterministic)
   double locate_seconds = 0;    ///< ID image and point location
   double transfer_seconds = 0;  ///< 3D positions, weights, spreads
-  Positions2 frame_net;         ///< 2D position of every local vertex in this frame's net
+  /// 2D position of every local vertex in this frame's net (paper), or where it slid to in the
+  /// patch's chart (elastic)
+  Positions2 frame_net;
   IdImage id_image;             ///< the lookup image (kept only with FrameExtras::id_image)
 };
 

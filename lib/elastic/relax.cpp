@@ -1,0 +1,536 @@
+#include "elastic/relax.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+
+#include "core/check.h"
+#include "core/error.h"
+
+namespace skinslide {
+namespace {
+
+using Mat32 = Eigen::Matrix<double, 3, 2>;
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// A triangle's three gradient rows G_k (J = sum_k x_k G_k^T) from its rest inverse D.
+std::array<Vec2, 3> gradient_rows(const Eigen::Matrix2d& D) {
+  const Vec2 g1 = D.row(0).transpose(), g2 = D.row(1).transpose();
+  return {-(g1 + g2), g1, g2};
+}
+
+// The 2D inverse of a bind triangle's edges in a frame of its plane; zero without area.
+Eigen::Matrix2d rest_inverse(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 f1 = b - a, f2 = c - a;
+  const double l1 = f1.norm();
+  const double twice_area = f1.cross(f2).norm();
+  // Below this the triangle's shape is round-off: it has no rest shape to return to.
+  const double scale = f1.squaredNorm() + f2.squaredNorm() + (f2 - f1).squaredNorm();
+  if (!(l1 > 0) || !(twice_area > 1e-12 * scale)) return Eigen::Matrix2d::Zero();
+  const Vec3 ex = f1 / l1;
+  const double x2 = f2.dot(ex);
+  const double y2 = twice_area / l1;
+  Eigen::Matrix2d B;
+  B << l1, x2, 0, y2;
+  return B.inverse();
+}
+
+struct TriangleEnergy {
+  double energy = 0;
+  Mat32 dJ = Mat32::Zero();  // dE/dJ, unweighted
+};
+
+// e = (s1 - s)^2 + (s2 - s)^2 over J's singular values, from |J|^2 and det(J^T J): s1 + s2 =
+// sqrt(|J|^2 + 2 sqrt(det)). dE/dJ = 2 (J - s R), R = J's polar factor, J (J^T J)^(-1/2).
+TriangleEnergy triangle_energy(const Mat32& J, double s, const Vec3& frame_normal,
+                               bool gradient) {
+  TriangleEnergy out;
+  const double a = J.col(0).squaredNorm(), b = J.col(0).dot(J.col(1)),
+               c = J.col(1).squaredNorm();
+  const double tr = a + c;
+  // The eigenvalues of J^T J, each to round-off: the energy of a frame at rest is then round-off
+  // squared, not round-off.
+  const double half_gap = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+  const double l1 = 0.5 * tr + half_gap;
+  const double det = std::max(a * c - b * b, 0.0);
+  const double l2 = l1 > 0 ? det / l1 : 0.0;
+  const double s1 = std::sqrt(l1), s2 = std::sqrt(l2);
+  const double delta = s1 * s2;
+  const double tau = s1 + s2;
+  out.energy = (s1 - s) * (s1 - s) + (s2 - s) * (s2 - s);
+  if (!gradient) return out;
+  Mat32 R = Mat32::Zero();
+  if (delta > 1e-12 * tr) {
+    // (J^T J + delta I)^-1 tau = (J^T J)^(-1/2) for 2x2 (the closed-form square root).
+    Eigen::Matrix2d adj;
+    adj << c + delta, -b, -b, a + delta;
+    R = J * adj / (delta * tau);
+  } else if (tr > 0) {
+    // Rank one: R = u1 v1^T + u2 v2^T with u2 in the frame's tangent plane.
+    Vec2 v1 = std::abs(b) > 0 ? Vec2(b, l1 - a) : (a >= c ? Vec2(1, 0) : Vec2(0, 1));
+    v1.normalize();
+    const Vec2 v2(-v1.y(), v1.x());
+    const Vec3 u1 = (J * v1).normalized();
+    const double nn = frame_normal.norm();
+    const Vec3 u2 = nn > 0 ? Vec3(frame_normal.cross(u1) / nn) : Vec3::Zero();
+    R = u1 * v1.transpose() + u2 * v2.transpose();
+  }
+  out.dJ = 2 * (J - s * R);
+  return out;
+}
+
+Mat32 deformation_gradient(const Positions3& x, const Triangle& t, const Eigen::Matrix2d& D) {
+  Mat32 e;
+  e.col(0) = x[t[1]] - x[t[0]];
+  e.col(1) = x[t[2]] - x[t[0]];
+  return e * D;
+}
+
+bool has_rest_shape(const Eigen::Matrix2d& D) { return D(0, 0) != 0; }
+
+// Energy, and optionally its gradient per local vertex.
+double energy_and_gradient(const ElasticSetup& setup, const Positions3& x, double s,
+                           const std::vector<Vec3>& frame_normals, Positions3* gradient) {
+  const auto& tris = setup.chart.triangles;
+  const Index nt = setup.chart.patch_triangle_count;
+  if (gradient) gradient->assign(x.size(), Vec3::Zero());
+  double total = 0;
+  for (Index t = 0; t < nt; ++t) {
+    const Eigen::Matrix2d& D = setup.rest_inverse[t];
+    if (!has_rest_shape(D)) continue;
+    const Mat32 J = deformation_gradient(x, tris[t], D);
+    const TriangleEnergy te = triangle_energy(J, s, frame_normals[t], gradient != nullptr);
+    total += te.energy;
+    if (!gradient) continue;
+    const std::array<Vec2, 3> G = gradient_rows(D);
+    for (int k = 0; k < 3; ++k) (*gradient)[tris[t][k]] += setup.triangle_weight * (te.dJ * G[k]);
+  }
+  return setup.triangle_weight * total;
+}
+
+// The frame's surface over a chart triangle: dPhi/du, 3x2.
+Mat32 chart_jacobian(const ElasticSetup& setup, const Positions3& frame, Index t) {
+  const Triangle& tri = setup.chart.triangles[t];
+  Mat32 e;
+  e.col(0) = frame[tri[1]] - frame[tri[0]];
+  e.col(1) = frame[tri[2]] - frame[tri[0]];
+  return e * setup.chart.inverse_edges[t];
+}
+
+Vec3 surface_point(const Positions3& frame, const Triangle& tri, const ChartPoint& p) {
+  return p.weight[0] * frame[tri[0]] + p.weight[1] * frame[tri[1]] + p.weight[2] * frame[tri[2]];
+}
+
+// At a chart vertex Phi has no Jacobian: the least-squares linear map from the vertex's chart
+// one-ring to its frame one-ring, projected on the frame's tangent plane there (edges weighted by
+// 1 / |chart edge|^2). A model only: the line search measures the true energy.
+Mat32 vertex_jacobian(const ElasticSetup& setup, const Positions3& frame,
+                      const std::vector<Vec3>& frame_normals, Index v) {
+  const Chart& chart = setup.chart;
+  Vec3 n = Vec3::Zero();
+  for (Index k = chart.corner_start[v]; k < chart.corner_start[v + 1]; ++k)
+    n += frame_normals[chart.corner_triangles[k]];
+  const double nn = n.norm();
+  if (nn > 0) n /= nn;
+  Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+  Mat32 B = Mat32::Zero();
+  for (Index k = chart.corner_start[v]; k < chart.corner_start[v + 1]; ++k)
+    for (Index r : chart.triangles[chart.corner_triangles[k]]) {
+      if (r == v) continue;
+      const Vec2 du = chart.uv[r] - chart.uv[v];
+      Vec3 dx = frame[r] - frame[v];
+      dx -= dx.dot(n) * n;
+      const double w = 1.0 / std::max(du.squaredNorm(), 1e-300);
+      A += w * du * du.transpose();
+      B += w * dx * du.transpose();
+    }
+  const double det = A.determinant();
+  if (!(std::abs(det) > 0) || !std::isfinite(det)) return Mat32::Zero();
+  return B * A.inverse();
+}
+
+// The patch triangle a point enters when it leaves `u` along `d`: at a chart vertex the incident
+// triangle whose wedge holds d; on an edge the triangle across it when d points out; else its own.
+Index entered_triangle(const Chart& chart, Index vertex_at, const Vec2& u, Index t, const Vec2& d) {
+  if (d.x() == 0 && d.y() == 0) return t;
+  if (vertex_at >= 0) {
+    Index best = t;
+    double best_score = -INFINITY;
+    for (Index k = chart.corner_start[vertex_at]; k < chart.corner_start[vertex_at + 1]; ++k) {
+      const Index s = chart.corner_triangles[k];
+      const Triangle& tri = chart.triangles[s];
+      const int c = tri[0] == vertex_at ? 0 : tri[1] == vertex_at ? 1 : 2;
+      const Vec2 a = chart.uv[tri[(c + 1) % 3]] - chart.uv[vertex_at];
+      const Vec2 b = chart.uv[tri[(c + 2) % 3]] - chart.uv[vertex_at];
+      // >= 0 for both when d lies in the wedge from a to b (counter-clockwise).
+      const double score = std::min(cross2(a, d) / (a.norm() * d.norm()),
+                                    cross2(d, b) / (b.norm() * d.norm()));
+      if (score > best_score) {
+        best_score = score;
+        best = s;
+      }
+    }
+    return best;
+  }
+  const std::array<double, 3> w = chart_barycentric(chart, t, u);
+  const Vec2 dm = chart.inverse_edges[t] * d;
+  const std::array<double, 3> dw{-dm.x() - dm.y(), dm.x(), dm.y()};
+  Index out = t;
+  double steepest = 0;
+  for (int k = 0; k < 3; ++k)
+    if (w[k] <= 1e-12 && dw[k] < steepest) {
+      const Index nb = chart.neighbour[t][k];
+      if (nb >= 0 && nb < chart.patch_triangle_count) {
+        out = nb;
+        steepest = dw[k];
+      }
+    }
+  return out;
+}
+
+// The largest step along d before a chart triangle with a moving corner loses its area: the
+// smallest positive root of its signed area, a quadratic in the step (Smith & Schaefer 2015).
+double max_step(const ElasticSetup& setup, const Positions2& node_uv, const Positions2& node_d) {
+  const Chart& chart = setup.chart;
+  double alpha = INFINITY;
+  for (Index t = 0; t < chart.patch_triangle_count; ++t) {
+    const Triangle& tri = chart.triangles[t];
+    const Vec2 d0 = node_d[tri[0]], d1 = node_d[tri[1]] - d0, d2 = node_d[tri[2]] - d0;
+    if (d1.isZero(0) && d2.isZero(0)) continue;
+    const Vec2 e1 = node_uv[tri[1]] - node_uv[tri[0]], e2 = node_uv[tri[2]] - node_uv[tri[0]];
+    const double a = cross2(d1, d2);
+    const double b = cross2(e1, d2) + cross2(d1, e2);
+    const double c = cross2(e1, e2);
+    double root = INFINITY;
+    if (std::abs(a) <= 1e-14 * (std::abs(b) + std::abs(c))) {
+      if (b < 0) root = -c / b;
+    } else {
+      const double disc = b * b - 4 * a * c;
+      if (disc >= 0) {
+        const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+        for (const double r : {q / a, q != 0 ? c / q : INFINITY})
+          if (r > 0) root = std::min(root, r);
+      }
+    }
+    alpha = std::min(alpha, root);
+  }
+  return alpha;
+}
+
+// The Gauss-Newton matrix T^T (K x I3) T over the movable vertices' chart coordinates, into a
+// fixed compressed-column pattern (2x2 blocks of the metric's pattern). Held vertices' rows and
+// columns are the identity's, so their step is zero.
+class StepSystem {
+ public:
+  explicit StepSystem(const ElasticSetup& setup) : setup_(setup) {
+    const Index m = static_cast<Index>(setup.movable.size());
+    H_.resize(2 * m, 2 * m);
+    const size_t nnz = 4 * setup.metric_column.size();
+    H_.resizeNonZeros(static_cast<Eigen::Index>(nnz));
+    int* outer = H_.outerIndexPtr();
+    int* inner = H_.innerIndexPtr();
+    Index k = 0;
+    for (Index j = 0; j < m; ++j)
+      for (int b = 0; b < 2; ++b) {
+        outer[2 * j + b] = k;
+        for (Index e = setup.metric_start[j]; e < setup.metric_start[j + 1]; ++e) {
+          inner[k++] = 2 * setup.metric_column[e];
+          inner[k++] = 2 * setup.metric_column[e] + 1;
+        }
+      }
+    outer[2 * m] = k;
+    solver_.analyzePattern(H_);
+  }
+
+  // Solves H d = -T^T g. False when the factorisation fails.
+  bool solve(const std::vector<Mat32>& T, const std::vector<char>& held,
+             const Positions3& gradient, Positions2& d) {
+    const Index m = static_cast<Index>(setup_.movable.size());
+    double* value = H_.valuePtr();
+    Index k = 0;
+    double trace = 0;
+    for (Index j = 0; j < m; ++j)
+      for (int b = 0; b < 2; ++b)
+        for (Index e = setup_.metric_start[j]; e < setup_.metric_start[j + 1]; ++e) {
+          const Index i = setup_.metric_column[e];
+          for (int a = 0; a < 2; ++a, ++k) {
+            if (held[i] || held[j])
+              value[k] = (i == j && a == b) ? 1.0 : 0.0;
+            else
+              value[k] = setup_.metric_value[e] * T[i].col(a).dot(T[j].col(b));
+            if (i == j && a == b) trace += value[k];
+          }
+        }
+    // A frame triangle crushed to a line leaves its vertices' blocks singular: a whisper of the
+    // identity keeps the factorisation defined without changing any well-posed step.
+    const double mu = 1e-12 * trace / std::max<double>(1, 2 * m) + 1e-300;
+    k = 0;
+    for (Index j = 0; j < m; ++j)
+      for (int b = 0; b < 2; ++b)
+        for (Index e = setup_.metric_start[j]; e < setup_.metric_start[j + 1]; ++e)
+          for (int a = 0; a < 2; ++a, ++k)
+            if (setup_.metric_column[e] == j && a == b) value[k] += mu;
+    solver_.factorize(H_);
+    if (solver_.info() != Eigen::Success) return false;
+    Eigen::VectorXd rhs(2 * m);
+    for (Index i = 0; i < m; ++i) {
+      const Vec2 r = held[i] ? Vec2::Zero() : Vec2(-(T[i].transpose() * gradient[setup_.movable[i]]));
+      rhs.segment<2>(2 * i) = r;
+    }
+    const Eigen::VectorXd x = solver_.solve(rhs);
+    if (!x.allFinite()) return false;
+    d.resize(m);
+    for (Index i = 0; i < m; ++i) d[i] = held[i] ? Vec2::Zero() : Vec2(x.segment<2>(2 * i));
+    return true;
+  }
+
+ private:
+  const ElasticSetup& setup_;
+  SparseMatrix H_;
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver_;
+};
+
+}  // namespace
+
+ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>& triangles,
+                           const std::vector<std::vector<Index>>& loops, Index outer_loop,
+                           const std::vector<Index>& movable) {
+  ElasticSetup setup;
+  setup.chart = disk_chart(points, triangles, loops, outer_loop);
+  setup.movable = movable;
+  setup.movable_slot.assign(points.size(), -1);
+  for (size_t i = 0; i < movable.size(); ++i) setup.movable_slot[movable[i]] = static_cast<Index>(i);
+  setup.rest_inverse.resize(triangles.size());
+  double area = 0;
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Triangle& tri = triangles[t];
+    setup.rest_inverse[t] = rest_inverse(points[tri[0]], points[tri[1]], points[tri[2]]);
+    area += 0.5 * (points[tri[1]] - points[tri[0]]).cross(points[tri[2]] - points[tri[0]]).norm();
+  }
+  setup.bind_area = area;
+  // Uniform weights: every triangle's stretch counts the same (small triangles are where skin
+  // creases); the mean area only gives the energy the units of an area.
+  setup.triangle_weight = triangles.empty() ? 0.0 : area / static_cast<double>(triangles.size());
+  // K_ij = sum_t 2 w G_ti . G_tj over movable pairs.
+  std::vector<Triplet> entries;
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Eigen::Matrix2d& D = setup.rest_inverse[t];
+    if (!has_rest_shape(D)) continue;
+    const std::array<Vec2, 3> G = gradient_rows(D);
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        const Index i = setup.movable_slot[triangles[t][k]], j = setup.movable_slot[triangles[t][l]];
+        if (i >= 0 && j >= 0) entries.emplace_back(i, j, 2 * setup.triangle_weight * G[k].dot(G[l]));
+      }
+  }
+  // Every movable vertex keeps a diagonal entry, even with no rest shape around it.
+  for (size_t i = 0; i < movable.size(); ++i) entries.emplace_back(i, i, 0.0);
+  const Index m = static_cast<Index>(movable.size());
+  Eigen::SparseMatrix<double, Eigen::RowMajor> K(m, m);
+  K.setFromTriplets(entries.begin(), entries.end());
+  K.makeCompressed();
+  setup.metric_start.assign(K.outerIndexPtr(), K.outerIndexPtr() + m + 1);
+  setup.metric_column.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
+  setup.metric_value.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+  return setup;
+}
+
+double elastic_energy(const ElasticSetup& setup, const std::vector<Triangle>& triangles,
+                      const Positions3& x, double scale) {
+  std::vector<Vec3> normals(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Triangle& tri = triangles[t];
+    normals[t] = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]);
+  }
+  return energy_and_gradient(setup, x, scale, normals, nullptr);
+}
+
+ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
+                          const ElasticOptions& options) {
+  const Chart& chart = setup.chart;
+  const auto& tris = chart.triangles;
+  const Index nt = chart.patch_triangle_count;
+  const Index m = static_cast<Index>(setup.movable.size());
+  ElasticResult result;
+  result.uv.resize(m);
+  result.where.resize(m);
+  result.position.resize(m);
+  // The start: every movable vertex exactly at its frame position, on a triangle around it.
+  for (Index i = 0; i < m; ++i) {
+    const Index v = setup.movable[i];
+    result.uv[i] = chart.uv[v];
+    const Index t = chart.corner_triangles[chart.corner_start[v]];
+    ChartPoint p{t, {0, 0, 0}};
+    for (int k = 0; k < 3; ++k) p.weight[k] = tris[t][k] == v ? 1.0 : 0.0;
+    result.where[i] = p;
+    result.position[i] = frame[v];
+  }
+  if (m == 0) return result;
+  std::vector<Vec3> frame_normals(nt);
+  double frame_area = 0;
+  for (Index t = 0; t < nt; ++t) {
+    const Triangle& tri = tris[t];
+    frame_normals[t] = (frame[tri[1]] - frame[tri[0]]).cross(frame[tri[2]] - frame[tri[0]]);
+    frame_area += 0.5 * frame_normals[t].norm();
+  }
+  const double s = setup.bind_area > 0 ? std::sqrt(frame_area / setup.bind_area) : 1.0;
+  result.scale = s;
+  Positions3 x = frame;
+  Positions3 g;
+  double E = energy_and_gradient(setup, x, s, frame_normals, &g);
+  result.energy_before = result.energy_after = E;
+  if (!std::isfinite(E))
+    throw Error(ErrorKind::Numeric, "the frame's elastic energy is not finite");
+  // A frame that is the bind up to a rigid motion and a uniform scale has nothing to undo; its
+  // energy is round-off.
+  if (E <= 1e-20 * setup.bind_area || !std::isfinite(s)) {
+    result.stop = "at rest";
+    return result;
+  }
+  const double E0 = E;
+  std::vector<Mat32> jacobian(nt);
+  for (Index t = 0; t < nt; ++t) jacobian[t] = chart_jacobian(setup, frame, t);
+  std::vector<char> on_vertex(m, 1);
+  StepSystem system(setup);
+  Positions2 node_uv = chart.uv;  // every node's chart point: movable ones follow the slide
+  Positions2 node_d(chart.uv.size(), Vec2::Zero());
+  std::vector<Mat32> T(m), T_true(m);
+  std::vector<Index> entered(m);
+  std::vector<char> held(m);
+  std::vector<int> switched(m);
+  Positions2 d;
+  Positions2 trial_uv(m);
+  std::vector<ChartPoint> trial_where(m);
+  Positions3 trial_x = frame;
+  int small_steps = 0;
+  result.stop = "limit";
+  for (int it = 0; it < options.max_iterations; ++it) {
+    for (Index i = 0; i < m; ++i)
+      T[i] = on_vertex[i] ? vertex_jacobian(setup, frame, frame_normals, setup.movable[i])
+                          : jacobian[result.where[i].triangle];
+    std::fill(held.begin(), held.end(), 0);
+    std::fill(switched.begin(), switched.end(), 0);
+    double slope = 0;
+    // Model and truth disagree where a vertex sits on a chart vertex or edge, and Phi bends
+    // there: a vertex whose true first-order change goes up is given the Jacobian of the triangle
+    // it would enter, and re-solved; after three such changes it is held for this step.
+    for (int round = 0;; ++round) {
+      if (!system.solve(T, held, g, d)) {
+        d.assign(m, Vec2::Zero());
+        break;
+      }
+      double model = 0;
+      slope = 0;
+      bool changed = false;
+      for (Index i = 0; i < m; ++i) {
+        const Index v = setup.movable[i];
+        entered[i] = entered_triangle(chart, on_vertex[i] ? v : -1, result.uv[i],
+                                      result.where[i].triangle, d[i]);
+        T_true[i] = jacobian[entered[i]];
+        model += g[v].dot(T[i] * d[i]);
+        slope += g[v].dot(T_true[i] * d[i]);
+      }
+      if (!(slope > 0.5 * model) || round >= 12) break;
+      for (Index i = 0; i < m; ++i) {
+        const Index v = setup.movable[i];
+        if (held[i] || !(g[v].dot(T_true[i] * d[i]) > 0)) continue;
+        if (switched[i] < 3 && !T[i].isApprox(T_true[i], 0)) {
+          T[i] = T_true[i];
+          ++switched[i];
+        } else {
+          held[i] = 1;
+        }
+        changed = true;
+      }
+      if (!changed) break;
+    }
+    // If the step still climbs, whatever climbs is held: the rest is then a descent.
+    if (!(slope < 0)) {
+      slope = 0;
+      for (Index i = 0; i < m; ++i) {
+        const double c = g[setup.movable[i]].dot(T_true[i] * d[i]);
+        if (c > 0) {
+          d[i] = Vec2::Zero();
+          entered[i] = result.where[i].triangle;
+          held[i] = 1;
+        } else {
+          slope += c;
+        }
+      }
+    }
+    for (Index i = 0; i < m; ++i) result.held += held[i] ? 1 : 0;
+    if (!(slope < 0)) {
+      result.stop = "converged";
+      break;
+    }
+    for (Index i = 0; i < m; ++i) node_d[setup.movable[i]] = d[i];
+    const double alpha_max = max_step(setup, node_uv, node_d);
+    double alpha = std::min(1.0, 0.8 * alpha_max);
+    bool accepted = false;
+    double E_new = E;
+    for (int halving = 0; halving < 40 && alpha > 0; ++halving, alpha *= 0.5) {
+      for (Index i = 0; i < m; ++i) {
+        const Index v = setup.movable[i];
+        if (d[i].isZero(0)) {
+          trial_uv[i] = result.uv[i];
+          trial_where[i] = result.where[i];
+          trial_x[v] = x[v];
+          continue;
+        }
+        trial_uv[i] = result.uv[i] + alpha * d[i];
+        trial_where[i] = locate_in_chart(chart, trial_uv[i], entered[i]);
+        trial_x[v] = surface_point(frame, tris[trial_where[i].triangle], trial_where[i]);
+      }
+      bool turned = false;
+      for (Index t = 0; t < nt && !turned; ++t) {
+        const Triangle& tri = tris[t];
+        if (frame_normals[t].isZero(0)) continue;
+        const Vec3 n = (trial_x[tri[1]] - trial_x[tri[0]]).cross(trial_x[tri[2]] - trial_x[tri[0]]);
+        turned = !(n.dot(frame_normals[t]) > 0);
+      }
+      if (turned) continue;
+      E_new = energy_and_gradient(setup, trial_x, s, frame_normals, nullptr);
+      if (std::isfinite(E_new) && E_new < E && E_new <= E + 1e-4 * alpha * slope) {
+        accepted = true;
+        break;
+      }
+    }
+    for (Index i = 0; i < m; ++i) node_d[setup.movable[i]] = Vec2::Zero();
+    if (!accepted) {
+      result.stop = "no descent";
+      break;
+    }
+    const double decrease = E - E_new;
+    for (Index i = 0; i < m; ++i) {
+      if (d[i].isZero(0)) continue;
+      const Index v = setup.movable[i];
+      result.uv[i] = trial_uv[i];
+      result.where[i] = trial_where[i];
+      x[v] = trial_x[v];
+      node_uv[v] = trial_uv[i];
+      on_vertex[i] = 0;
+    }
+    E = energy_and_gradient(setup, x, s, frame_normals, &g);
+    result.iterations = it + 1;
+    small_steps = decrease < options.tolerance * E0 ? small_steps + 1 : 0;
+    if (small_steps >= 2) {
+      result.stop = "converged";
+      break;
+    }
+  }
+  result.energy_after = E;
+  for (Index i = 0; i < m; ++i) {
+    result.position[i] = x[setup.movable[i]];
+    if (!result.position[i].allFinite())
+      throw Error(ErrorKind::Numeric, "patch vertex " + std::to_string(setup.movable[i]) +
+                                          ": the slid position is not finite");
+  }
+  return result;
+}
+
+}  // namespace skinslide
