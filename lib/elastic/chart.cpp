@@ -136,8 +136,12 @@ Chart disk_chart(const Positions3& points, const std::vector<Triangle>& triangle
     throw Error(ErrorKind::Input, "the outer boundary loop (from vertex " +
                                       std::to_string(outer.front()) + ") has zero length");
   Positions2 outer_uv(outer.size());
+  const double n_outer = static_cast<double>(outer.size());
   for (size_t k = 0; k < outer.size(); ++k) {
-    const double a = 2 * std::numbers::pi * arc[k] / arc.back();
+    // By arc length, with a thousandth of even spacing so that a zero-length border edge still
+    // gets two distinct points.
+    const double a = 2 * std::numbers::pi *
+                     (0.999 * arc[k] / arc.back() + 0.001 * static_cast<double>(k) / n_outer);
     outer_uv[k] = Vec2(0.5 + 0.5 * std::cos(a), 0.5 + 0.5 * std::sin(a));
   }
   const auto area = [&](const Positions2& uv, const Triangle& t) {
