@@ -15,6 +15,13 @@ struct Sample {
   std::vector<Positions3> frames;  ///< data/<name>/frames/*.obj in name order
 };
 
+/// The paper's method (SlideMethod::Paper) with its default options.
+inline SlideOptions paper_options() {
+  SlideOptions o;
+  o.method = SlideMethod::Paper;
+  return o;
+}
+
 /// Loads data/<name> ("elbow" or "face").
 Sample load_sample(const std::string& name);
 

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "helpers/meshes.h"
+#include "helpers/samples.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/slide_frame.h"
 
@@ -61,7 +62,7 @@ TEST(BindSetup, PatchesSetUpInParallelEqualTheSerialSetUp) {
 // solve. The set-up and every slid bit are those of one thread.
 TEST(BindSetup, AMultigridPatchSetUpOnTwoThreadsEqualsTheSerialSetUp) {
   const Blocks b;
-  SlideOptions options;
+  SlideOptions options = test::paper_options();
   options.frame_solver = FrameSolver::Multigrid;
   const BindSetup one = bind_setup(b.mesh, {b.faces}, options, SlideControls{}, {}, 1);
   const BindSetup two = bind_setup(b.mesh, {b.faces}, options, SlideControls{}, {}, 8);
@@ -97,7 +98,7 @@ TEST(BindSetup, MultigridNetsAndSlidFramesAgreeWithCholeskyWithinTheTolerance) {
     const double a = p.x() > 20 ? 0.6 * (p.x() - 20) / 20 : 0.0;
     frame.emplace_back(20 + (p.x() - 20) * std::cos(a), p.y(), (p.x() - 20) * std::sin(a));
   }
-  SlideOptions options;
+  SlideOptions options = test::paper_options();
   options.frame_solver = FrameSolver::Cholesky;
   const BindSetup cholesky = bind_setup(mesh, {faces}, options, SlideControls{}, {}, 1);
   options.frame_solver = FrameSolver::Multigrid;
@@ -131,7 +132,7 @@ TEST(BindSetup, TheFirstFailingPatchInOrderNamesTheErrorWhateverTheThreads) {
                            Blocks::vertex(x0 + 4, 0), Blocks::vertex(x0, 4)});
   for (unsigned threads : {1u, 2u, 3u}) {
     try {
-      bind_setup(b.mesh, {b.faces}, SlideOptions{}, bad, {}, threads);
+      bind_setup(b.mesh, {b.faces}, test::paper_options(), bad, {}, threads);
       FAIL() << threads;
     } catch (const Error& e) {
       EXPECT_EQ(e.kind(), ErrorKind::Usage);

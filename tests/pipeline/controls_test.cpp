@@ -29,7 +29,7 @@ using test::distance_to_patch;
 std::string usage_error(const PolyMesh& bind, const std::vector<Index>& faces,
                         const SlideControls& c) {
   try {
-    bind_setup(bind, {faces}, SlideOptions{}, c);
+    bind_setup(bind, {faces}, test::paper_options(), c);
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Usage) << e.what();
     return e.what();
@@ -43,7 +43,7 @@ TEST(SlideWeights, ZeroLeavesEveryFrameBitIdentical) {
   const test::Sample c = load_sample("elbow");
   SlideControls controls;
   controls.weight.assign(c.bind.vertex_count(), 0.0);
-  const BindSetup setup = bind_setup(c.bind, {c.faces}, SlideOptions{}, controls);
+  const BindSetup setup = bind_setup(c.bind, {c.faces}, test::paper_options(), controls);
   for (const Positions3& frame : c.frames) {
     const FrameResult r = slide_frame(setup, frame);
     EXPECT_TRUE(r.slid.vertex.empty());
@@ -55,8 +55,8 @@ TEST(SlideWeights, OneIsTheFullSlideBitForBit) {
   const test::Sample c = load_sample("elbow");
   SlideControls controls;
   controls.weight.assign(c.bind.vertex_count(), 1.0);
-  const BindSetup plain = bind_setup(c.bind, {c.faces}, SlideOptions{});
-  const BindSetup weighted = bind_setup(c.bind, {c.faces}, SlideOptions{}, controls);
+  const BindSetup plain = bind_setup(c.bind, {c.faces}, test::paper_options());
+  const BindSetup weighted = bind_setup(c.bind, {c.faces}, test::paper_options(), controls);
   const Positions3& frame = c.frames.back();
   EXPECT_EQ(slid(weighted, frame), slid(plain, frame));
 }
@@ -65,11 +65,11 @@ TEST(SlideWeights, HalfIsTheMidpointAndStrengthScales) {
   const test::Sample c = load_sample("elbow");
   const Positions3& frame = c.frames.back();
   const double diag = diagonal(frame);
-  const Positions3 full = slid(bind_setup(c.bind, {c.faces}, SlideOptions{}), frame);
+  const Positions3 full = slid(bind_setup(c.bind, {c.faces}, test::paper_options()), frame);
 
   SlideControls half;
   half.weight.assign(c.bind.vertex_count(), 0.5);
-  const Positions3 mid = slid(bind_setup(c.bind, {c.faces}, SlideOptions{}, half), frame);
+  const Positions3 mid = slid(bind_setup(c.bind, {c.faces}, test::paper_options(), half), frame);
   size_t moved = 0;
   for (size_t v = 0; v < frame.size(); ++v) {
     EXPECT_LT((mid[v] - 0.5 * (frame[v] + full[v])).norm(), 1e-15 * diag) << v;
@@ -79,21 +79,21 @@ TEST(SlideWeights, HalfIsTheMidpointAndStrengthScales) {
 
   SlideControls strength;  // strength alone = a uniform weight
   strength.strength = 0.5;
-  EXPECT_EQ(slid(bind_setup(c.bind, {c.faces}, SlideOptions{}, strength), frame), mid);
+  EXPECT_EQ(slid(bind_setup(c.bind, {c.faces}, test::paper_options(), strength), frame), mid);
   half.strength = 2;  // 0.5 x 2 = the full slide
-  EXPECT_EQ(slid(bind_setup(c.bind, {c.faces}, SlideOptions{}, half), frame), full);
+  EXPECT_EQ(slid(bind_setup(c.bind, {c.faces}, test::paper_options(), half), frame), full);
   half.strength = 0;
-  EXPECT_EQ(slid(bind_setup(c.bind, {c.faces}, SlideOptions{}, half), frame), frame);
+  EXPECT_EQ(slid(bind_setup(c.bind, {c.faces}, test::paper_options(), half), frame), frame);
 }
 
 TEST(SlideWeights, APaintedMaskMovesOnlyWhereItIsPainted) {
   const test::Sample c = load_sample("elbow");
   const Positions3& frame = c.frames.back();
-  const Positions3 full = slid(bind_setup(c.bind, {c.faces}, SlideOptions{}), frame);
+  const Positions3 full = slid(bind_setup(c.bind, {c.faces}, test::paper_options()), frame);
   SlideControls controls;
   controls.weight.assign(c.bind.vertex_count(), 0.0);
   for (Index v = 0; v < c.bind.vertex_count(); v += 3) controls.weight[v] = 1.0;
-  const Positions3 out = slid(bind_setup(c.bind, {c.faces}, SlideOptions{}, controls), frame);
+  const Positions3 out = slid(bind_setup(c.bind, {c.faces}, test::paper_options(), controls), frame);
   for (Index v = 0; v < c.bind.vertex_count(); ++v)
     EXPECT_EQ(out[v], v % 3 == 0 ? full[v] : frame[v]) << v;
 }
@@ -119,7 +119,7 @@ TEST(Pins, StayAtTheFramePositionWhileTheirNeighboursSlide) {
   const test::Sample c = load_sample("elbow");
   SlideControls controls;
   controls.pins = {500, 501, 502, 600, 0 /* outside the patch */, 352 /* on the border */};
-  const BindSetup setup = bind_setup(c.bind, {c.faces}, SlideOptions{}, controls);
+  const BindSetup setup = bind_setup(c.bind, {c.faces}, test::paper_options(), controls);
   const PatchNet& patch = setup.patches.at(0);
   EXPECT_EQ(patch.pinned.size(), 4u);
   EXPECT_EQ(setup.pins_ignored, 2);
@@ -161,9 +161,9 @@ TEST(Pins, APinOnAHalfStretchedSheetHoldsTheSheet) {
   SlideControls controls;
   controls.pins = {centre};
   const Positions3 free_out =
-      slid(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}), frame);
+      slid(bind_setup(bind, {test::all_faces(bind)}, test::paper_options()), frame);
   const Positions3 out =
-      slid(bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}, controls), frame);
+      slid(bind_setup(bind, {test::all_faces(bind)}, test::paper_options(), controls), frame);
   EXPECT_GT(free_out[centre].x(), frame[centre].x());
   EXPECT_EQ(out[centre], frame[centre]);
   EXPECT_GT(out[centre + 9].x(), frame[centre + 9].x()) << "the vertex above still slides right";
@@ -200,7 +200,7 @@ TEST(ChosenCorners, PutTheNamedVerticesOnTheSquaresCorners) {
   const PolyMesh bind = test::quad_grid(4, 4);
   SlideControls c;
   c.corners = {{1, 9, 23, 15}};
-  const BindSetup setup = bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}, c);
+  const BindSetup setup = bind_setup(bind, {test::all_faces(bind)}, test::paper_options(), c);
   const PatchNet& p = setup.patches.at(0);
   EXPECT_TRUE(p.corners_chosen);
   const Vec2 square[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -213,7 +213,7 @@ TEST(ChosenCorners, PutTheNamedVerticesOnTheSquaresCorners) {
   // a side of the square: zero area, counted by flipped_triangles; nothing else folds.
   EXPECT_EQ(flipped_triangles(p.bind_net, p.triangles), 2);
   // The automatic choice differs: vertex 0 is its (0,0), and nothing is flat.
-  const BindSetup automatic = bind_setup(bind, {test::all_faces(bind)}, SlideOptions{});
+  const BindSetup automatic = bind_setup(bind, {test::all_faces(bind)}, test::paper_options());
   EXPECT_EQ(automatic.patches[0].bind_net[0], Vec2(0, 0));
   EXPECT_EQ(flipped_triangles(automatic.patches[0].bind_net, automatic.patches[0].triangles), 0);
 }
@@ -249,8 +249,8 @@ TEST(ChosenOuterLoop, TheElbowsOtherEndOnTheSquareSlidesWithoutFolds) {
   const test::Sample c = load_sample("elbow");
   SlideControls controls;
   controls.outer_loop_vertices = {680};  // on the ring 672..703, the automatic choice is 352..383
-  const BindSetup automatic = bind_setup(c.bind, {c.faces}, SlideOptions{});
-  const BindSetup setup = bind_setup(c.bind, {c.faces}, SlideOptions{}, controls);
+  const BindSetup automatic = bind_setup(c.bind, {c.faces}, test::paper_options());
+  const BindSetup setup = bind_setup(c.bind, {c.faces}, test::paper_options(), controls);
   const PatchNet& p = setup.patches.at(0);
   EXPECT_TRUE(p.outer_loop_chosen);
   EXPECT_EQ(p.vertices[automatic.patches[0].loops[automatic.patches[0].outer_loop].front()], 352);
@@ -278,7 +278,7 @@ TEST(ChosenOuterLoop, AHoleOfASheetCanCarryTheSquare) {
   const PolyMesh bind = test::quad_grid_with_holes(6, 6, {14, 15, 20, 21});  // a 2x2 hole
   SlideControls controls;
   controls.outer_loop_vertices = {16};  // a corner of the hole
-  const BindSetup setup = bind_setup(bind, {test::all_faces(bind)}, SlideOptions{}, controls);
+  const BindSetup setup = bind_setup(bind, {test::all_faces(bind)}, test::paper_options(), controls);
   const PatchNet& p = setup.patches.at(0);
   const auto& outer = p.loops[p.outer_loop];
   EXPECT_EQ(outer.size(), 8u);
@@ -297,7 +297,7 @@ TEST(Density, FoldFreeFrameNetsWhereReadmeSaysSo) {
   for (const std::string name : {"elbow", "face"}) {
     const test::Sample c = load_sample(name);
     for (Density d : {Density::Paper, Density::Inverse, Density::Uniform}) {
-      SlideOptions o;
+      SlideOptions o = test::paper_options();
       o.density = d;
       const BindSetup setup = bind_setup(c.bind, {c.faces}, o);
       for (const PatchNet& p : setup.patches)
@@ -325,7 +325,7 @@ TEST(Density, FoldFreeFrameNetsWhereReadmeSaysSo) {
 // The report's spreads, checked against a direct computation of std log(L / L_bind).
 TEST(Spread, PatchReportMatchesADirectComputation) {
   const test::Sample c = load_sample("elbow");
-  const BindSetup setup = bind_setup(c.bind, {c.faces}, SlideOptions{});
+  const BindSetup setup = bind_setup(c.bind, {c.faces}, test::paper_options());
   const PatchNet& patch = setup.patches[0];
   auto spread = [&](const Positions3& x) {
     std::vector<double> r;
