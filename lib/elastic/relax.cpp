@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <cstdlib>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -126,6 +128,51 @@ Vec3 surface_point(const Positions3& frame, const Triangle& tri, const ChartPoin
   return p.weight[0] * frame[tri[0]] + p.weight[1] * frame[tri[1]] + p.weight[2] * frame[tri[2]];
 }
 
+// The smooth surface the relaxation measures its energy on: Phong tessellation (Boubekeur & Alexa
+// 2008) of the frame's triangles, which passes through every frame vertex with the vertex's
+// tangent plane there. On the flat triangles themselves a vertex that slides onto a crease finds
+// every way on uphill and stays there in one frame and not in the next: it pops. The slid
+// vertex is written on the flat triangle, at the same chart point.
+constexpr double kPhongShape = 0.75;
+
+struct SmoothSurface {
+  const Positions3& frame;
+  const std::vector<Triangle>& triangles;
+  const std::vector<Eigen::Matrix2d>& inverse_edges;
+  std::vector<Vec3> normal;  // per vertex: unit, or zero where its triangles have no area
+
+  Vec3 point(Index t, const std::array<double, 3>& w) const {
+    const Triangle& tri = triangles[t];
+    const Vec3 p = w[0] * frame[tri[0]] + w[1] * frame[tri[1]] + w[2] * frame[tri[2]];
+    Vec3 lift = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& n = normal[tri[k]];
+      lift += w[k] * (p - frame[tri[k]]).dot(n) * n;
+    }
+    return p - kPhongShape * lift;
+  }
+
+  // dPoint/du at barycentrics w of chart triangle t (w need not be clamped).
+  Mat32 jacobian(Index t, const std::array<double, 3>& w) const {
+    const Triangle& tri = triangles[t];
+    const Vec3 p = w[0] * frame[tri[0]] + w[1] * frame[tri[1]] + w[2] * frame[tri[2]];
+    const Eigen::Matrix2d& M = inverse_edges[t];
+    const std::array<Vec2, 3> dw{Vec2(-(M.row(0) + M.row(1)).transpose()),
+                                 Vec2(M.row(0).transpose()), Vec2(M.row(1).transpose())};
+    Mat32 J = Mat32::Zero();
+    for (int j = 0; j < 3; ++j) {
+      const Vec3& xj = frame[tri[j]];
+      Vec3 dj = xj - kPhongShape * (p - xj).dot(normal[tri[j]]) * normal[tri[j]];
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& n = normal[tri[k]];
+        dj -= kPhongShape * w[k] * n.dot(xj) * n;
+      }
+      J += dj * dw[j].transpose();
+    }
+    return J;
+  }
+};
+
 // At a chart vertex Phi has no Jacobian: the least-squares linear map from the vertex's chart
 // one-ring to its frame one-ring, projected on the frame's tangent plane there (edges weighted by
 // 1 / |chart edge|^2). A model only: the line search measures the true energy.
@@ -195,9 +242,11 @@ Index entered_triangle(const Chart& chart, Index vertex_at, const Vec2& u, Index
 
 // The largest step along d before a chart triangle with a moving corner loses its area: the
 // smallest positive root of its signed area, a quadratic in the step (Smith & Schaefer 2015).
-double max_step(const ElasticSetup& setup, const Positions2& node_uv, const Positions2& node_d) {
+double max_step(const ElasticSetup& setup, const Positions2& node_uv, const Positions2& node_d,
+                std::vector<double>* roots) {
   const Chart& chart = setup.chart;
   double alpha = INFINITY;
+  if (roots) roots->assign(chart.patch_triangle_count, INFINITY);
   for (Index t = 0; t < chart.patch_triangle_count; ++t) {
     const Triangle& tri = chart.triangles[t];
     const Vec2 d0 = node_d[tri[0]], d1 = node_d[tri[1]] - d0, d2 = node_d[tri[2]] - d0;
@@ -218,6 +267,7 @@ double max_step(const ElasticSetup& setup, const Positions2& node_uv, const Posi
       }
     }
     alpha = std::min(alpha, root);
+    if (roots) (*roots)[t] = root;
   }
   return alpha;
 }
@@ -380,7 +430,8 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   }
   const double s = setup.bind_area > 0 ? std::sqrt(frame_area / setup.bind_area) : 1.0;
   result.scale = s;
-  Positions3 x = frame;
+  Positions3 x = frame;   // the slid patch, on the frame's triangles
+  Positions3 xs = frame;  // the same chart points on the smooth surface
   Positions3 g;
   double E = energy_and_gradient(setup, x, s, frame_normals, &g);
   result.energy_before = result.energy_after = E;
@@ -393,54 +444,152 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     return result;
   }
   const double E0 = E;
-  std::vector<Mat32> jacobian(nt);
-  for (Index t = 0; t < nt; ++t) jacobian[t] = chart_jacobian(setup, frame, t);
+  SmoothSurface smooth{frame, tris, chart.inverse_edges, {}};
+  smooth.normal.assign(frame.size(), Vec3::Zero());
+  for (Index t = 0; t < nt; ++t)
+    for (Index v : tris[t]) smooth.normal[v] += frame_normals[t];
+  for (Vec3& n : smooth.normal) {
+    const double len = n.norm();
+    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
+  }
+  const auto smooth_jacobian = [&](Index i, Index t) {
+    return smooth.jacobian(t, chart_barycentric(chart, t, result.uv[i]));
+  };
   std::vector<char> on_vertex(m, 1);
   StepSystem system(setup);
   Positions2 node_uv = chart.uv;  // every node's chart point: movable ones follow the slide
-  Positions2 node_d(chart.uv.size(), Vec2::Zero());
-  std::vector<Mat32> T(m), T_true(m);
-  std::vector<Index> entered(m);
+  std::vector<Mat32> T(m);
   std::vector<char> held(m);
   std::vector<int> switched(m);
-  Positions2 d;
-  Positions2 trial_uv(m);
-  std::vector<ChartPoint> trial_where(m);
-  Positions3 trial_x = frame;
+  const Index hold_cap = std::max<Index>(16, m / 10);
+
+  // A direction's true first-order change: each vertex moves with the Jacobian of the triangle
+  // it enters.
+  struct Direction {
+    Positions2 d;
+    std::vector<Index> entered;
+    std::vector<Mat32> T_true;
+    double slope = 0;  // true
+    double model = 0;  // with the model's Jacobians
+  };
+  const auto direction = [&](Positions2 d) {
+    Direction out;
+    out.d = std::move(d);
+    out.entered.resize(m);
+    out.T_true.resize(m);
+    for (Index i = 0; i < m; ++i) {
+      const Index v = setup.movable[i];
+      out.entered[i] = entered_triangle(chart, on_vertex[i] ? v : -1, result.uv[i],
+                                        result.where[i].triangle, out.d[i]);
+      out.T_true[i] = smooth_jacobian(i, out.entered[i]);
+      out.model += g[v].dot(T[i] * out.d[i]);
+      out.slope += g[v].dot(out.T_true[i] * out.d[i]);
+    }
+    return out;
+  };
+  // Where a step of `alpha` along `dir` puts the movable vertices, in the chart and on the frame.
+  struct Trial {
+    Positions2 uv;
+    std::vector<ChartPoint> where;
+    Positions3 x;   // on the frame's triangles: what is written
+    Positions3 xs;  // on the smooth surface: what the energy measures
+  };
+  const auto trial = [&](const Direction& dir, double alpha) {
+    Trial t{result.uv, result.where, x, xs};
+    for (Index i = 0; i < m; ++i) {
+      if (dir.d[i].isZero(0)) continue;
+      const Index v = setup.movable[i];
+      t.uv[i] = result.uv[i] + alpha * dir.d[i];
+      t.where[i] = locate_in_chart(chart, t.uv[i], dir.entered[i]);
+      t.x[v] = surface_point(frame, tris[t.where[i].triangle], t.where[i]);
+      t.xs[v] = smooth.point(t.where[i].triangle, t.where[i].weight);
+    }
+    return t;
+  };
+  // Slid triangles turned against (or flat on) the frame's own, where the frame's has area.
+  const bool no_guard = std::getenv("SKINSLIDE_NO_GUARD") != nullptr;
+  const auto turned = [&](const Positions3& y) {
+    std::vector<Index> out;
+    if (no_guard) return out;
+    for (Index t = 0; t < nt; ++t) {
+      const Triangle& tri = tris[t];
+      if (frame_normals[t].isZero(0)) continue;
+      const Vec3 n = (y[tri[1]] - y[tri[0]]).cross(y[tri[2]] - y[tri[0]]);
+      if (!(n.dot(frame_normals[t]) > 0)) out.push_back(t);
+    }
+    return out;
+  };
+  const auto step_bound = [&](const Direction& dir, std::vector<double>* roots) {
+    Positions2 node_d(chart.uv.size(), Vec2::Zero());
+    for (Index i = 0; i < m; ++i) node_d[setup.movable[i]] = dir.d[i];
+    return max_step(setup, node_uv, node_d, roots);
+  };
+  // Holds every movable corner of triangle t; false when none was free.
+  const auto hold_triangle = [&](Index t) {
+    bool any = false;
+    for (Index v : tris[t]) {
+      const Index i = setup.movable_slot[v];
+      if (i >= 0 && !held[i]) held[i] = any = true;
+    }
+    return any;
+  };
+  // A vertex still on its chart vertex was modelled with its tangent plane's least-squares map;
+  // its chart step is the one that moves it, in the wedge that holds that step, as the model
+  // meant: the wedge's own map inverted on the model's 3D motion.
+  const auto redirected = [&](Index i, const Vec2& d) {
+    const Index v = setup.movable[i];
+    const Vec3 motion = T[i] * d;
+    Vec2 best = d;
+    double best_score = -INFINITY;
+    for (Index k = chart.corner_start[v]; k < chart.corner_start[v + 1]; ++k) {
+      const Index t = chart.corner_triangles[k];
+      const Triangle& tri = tris[t];
+      const int c = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+      std::array<double, 3> w{0, 0, 0};
+      w[c] = 1;
+      const Mat32 Tk = smooth.jacobian(t, w);
+      const Eigen::Matrix2d A = Tk.transpose() * Tk;
+      if (!(std::abs(A.determinant()) > 0)) continue;
+      const Vec2 dk = A.inverse() * (Tk.transpose() * motion);
+      const Vec2 a = chart.uv[tri[(c + 1) % 3]] - chart.uv[v];
+      const Vec2 b = chart.uv[tri[(c + 2) % 3]] - chart.uv[v];
+      const double n = dk.norm();
+      if (!(n > 0)) continue;
+      const double score = std::min(cross2(a, dk) / (a.norm() * n), cross2(dk, b) / (b.norm() * n));
+      if (score > best_score) {
+        best_score = score;
+        best = dk;
+      }
+    }
+    return best;
+  };
+  const auto solved = [&]() {
+    Positions2 d;
+    if (!system.solve(T, held, g, d)) d.assign(m, Vec2::Zero());
+    for (Index i = 0; i < m; ++i)
+      if (on_vertex[i] && !held[i] && switched[i] == 0 && !d[i].isZero(0)) d[i] = redirected(i, d[i]);
+    return direction(std::move(d));
+  };
+
   int small_steps = 0;
   result.stop = "limit";
   for (int it = 0; it < options.max_iterations; ++it) {
     for (Index i = 0; i < m; ++i)
       T[i] = on_vertex[i] ? vertex_jacobian(setup, frame, frame_normals, setup.movable[i])
-                          : jacobian[result.where[i].triangle];
+                          : smooth_jacobian(i, result.where[i].triangle);
     std::fill(held.begin(), held.end(), 0);
     std::fill(switched.begin(), switched.end(), 0);
-    double slope = 0;
+    Direction dir = solved();
     // Model and truth disagree where a vertex sits on a chart vertex or edge, and Phi bends
     // there: a vertex whose true first-order change goes up is given the Jacobian of the triangle
     // it would enter, and re-solved; after three such changes it is held for this step.
-    for (int round = 0;; ++round) {
-      if (!system.solve(T, held, g, d)) {
-        d.assign(m, Vec2::Zero());
-        break;
-      }
-      double model = 0;
-      slope = 0;
+    for (int round = 0; dir.slope > 0.5 * dir.model && round < 12; ++round) {
       bool changed = false;
       for (Index i = 0; i < m; ++i) {
         const Index v = setup.movable[i];
-        entered[i] = entered_triangle(chart, on_vertex[i] ? v : -1, result.uv[i],
-                                      result.where[i].triangle, d[i]);
-        T_true[i] = jacobian[entered[i]];
-        model += g[v].dot(T[i] * d[i]);
-        slope += g[v].dot(T_true[i] * d[i]);
-      }
-      if (!(slope > 0.5 * model) || round >= 12) break;
-      for (Index i = 0; i < m; ++i) {
-        const Index v = setup.movable[i];
-        if (held[i] || !(g[v].dot(T_true[i] * d[i]) > 0)) continue;
-        if (switched[i] < 3 && !T[i].isApprox(T_true[i], 0)) {
-          T[i] = T_true[i];
+        if (held[i] || !(g[v].dot(dir.T_true[i] * dir.d[i]) > 0)) continue;
+        if (switched[i] < 3 && !T[i].isApprox(dir.T_true[i], 0)) {
+          T[i] = dir.T_true[i];
           ++switched[i];
         } else {
           held[i] = 1;
@@ -448,80 +597,175 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
         changed = true;
       }
       if (!changed) break;
+      dir = solved();
     }
-    // If the step still climbs, whatever climbs is held: the rest is then a descent.
-    if (!(slope < 0)) {
-      slope = 0;
-      for (Index i = 0; i < m; ++i) {
-        const double c = g[setup.movable[i]].dot(T_true[i] * d[i]);
-        if (c > 0) {
-          d[i] = Vec2::Zero();
-          entered[i] = result.where[i].triangle;
-          held[i] = 1;
-        } else {
-          slope += c;
-        }
+    // Steps that a few triangles cut short (one about to turn over in the chart or against the
+    // frame) leave the rest of the patch stuck: those triangles' vertices are held and the step
+    // solved again, within a budget of held vertices; both steps are then tried.
+    std::vector<Direction> candidates{dir};
+    Index budget = hold_cap;
+    for (int round = 0; round < 12; ++round) {
+      std::vector<double> roots;
+      const double alpha_max = step_bound(candidates.back(), &roots);
+      std::vector<Index> culprits;
+      if (alpha_max < 1) {
+        for (Index t = 0; t < nt; ++t)
+          if (roots[t] < 1) culprits.push_back(t);
+      } else {
+        culprits = turned(trial(candidates.back(), std::min(1.0, 0.8 * alpha_max)).x);
       }
-    }
-    for (Index i = 0; i < m; ++i) result.held += held[i] ? 1 : 0;
-    if (!(slope < 0)) {
-      result.stop = "converged";
-      break;
-    }
-    for (Index i = 0; i < m; ++i) node_d[setup.movable[i]] = d[i];
-    const double alpha_max = max_step(setup, node_uv, node_d);
-    double alpha = std::min(1.0, 0.8 * alpha_max);
-    bool accepted = false;
-    double E_new = E;
-    for (int halving = 0; halving < 40 && alpha > 0; ++halving, alpha *= 0.5) {
-      for (Index i = 0; i < m; ++i) {
-        const Index v = setup.movable[i];
-        if (d[i].isZero(0)) {
-          trial_uv[i] = result.uv[i];
-          trial_where[i] = result.where[i];
-          trial_x[v] = x[v];
-          continue;
-        }
-        trial_uv[i] = result.uv[i] + alpha * d[i];
-        trial_where[i] = locate_in_chart(chart, trial_uv[i], entered[i]);
-        trial_x[v] = surface_point(frame, tris[trial_where[i].triangle], trial_where[i]);
-      }
-      bool turned = false;
-      for (Index t = 0; t < nt && !turned; ++t) {
-        const Triangle& tri = tris[t];
-        if (frame_normals[t].isZero(0)) continue;
-        const Vec3 n = (trial_x[tri[1]] - trial_x[tri[0]]).cross(trial_x[tri[2]] - trial_x[tri[0]]);
-        turned = !(n.dot(frame_normals[t]) > 0);
-      }
-      if (turned) continue;
-      E_new = energy_and_gradient(setup, trial_x, s, frame_normals, nullptr);
-      if (std::isfinite(E_new) && E_new < E && E_new <= E + 1e-4 * alpha * slope) {
-        accepted = true;
+      if (culprits.empty()) break;
+      const std::vector<char> before = held;
+      bool any = false;
+      for (Index t : culprits) any = hold_triangle(t) || any;
+      const Index added = static_cast<Index>(std::count(held.begin(), held.end(), 1) -
+                                             std::count(before.begin(), before.end(), 1));
+      if (!any || added > budget) {
+        held = before;
         break;
       }
+      budget -= added;
+      Direction pinned = solved();
+      if (candidates.size() == 1)
+        candidates.push_back(std::move(pinned));
+      else
+        candidates.back() = std::move(pinned);
     }
-    for (Index i = 0; i < m; ++i) node_d[setup.movable[i]] = Vec2::Zero();
+    // Whatever still climbs is held: each candidate is then a descent of the true energy.
+    for (Direction& c : candidates)
+      if (!(c.slope < 0)) {
+        c.slope = 0;
+        for (Index i = 0; i < m; ++i) {
+          const double rise = g[setup.movable[i]].dot(c.T_true[i] * c.d[i]);
+          if (rise > 0) {
+            c.d[i] = Vec2::Zero();
+            c.entered[i] = result.where[i].triangle;
+          } else {
+            c.slope += rise;
+          }
+        }
+      }
+    result.held += static_cast<int>(std::count(held.begin(), held.end(), 1));
+    // Line search on each candidate: from 0.8 of the step that turns a chart triangle over (at
+    // most 1), halved until no slid triangle turns against the frame and the energy falls by
+    // Armijo's rule; the lower energy wins.
+    bool accepted = false;
+    double E_new = E;
+    Trial best;
+    for (const Direction& c : candidates) {
+      if (!(c.slope < 0)) continue;
+      double alpha = std::min(1.0, 0.8 * step_bound(c, nullptr));
+      for (int halving = 0; halving < 40 && alpha > 0; ++halving, alpha *= 0.5) {
+        // The vertices of slid triangles that would turn against the frame stay where they are
+        // and the rest take the step (until nothing turns: a triangle all of whose corners stay
+        // is as it is now, untouched).
+        Direction part = c;
+        Trial t = trial(part, alpha);
+        for (std::vector<Index> bad = turned(t.x); !bad.empty() && part.slope < 0;
+             bad = turned(t.x)) {
+          for (Index b : bad)
+            for (Index v : tris[b]) {
+              const Index i = setup.movable_slot[v];
+              if (i < 0 || part.d[i].isZero(0)) continue;
+              part.slope -= g[v].dot(part.T_true[i] * part.d[i]);
+              part.d[i] = Vec2::Zero();
+              part.entered[i] = result.where[i].triangle;
+              t.uv[i] = result.uv[i];
+              t.where[i] = result.where[i];
+              t.x[v] = x[v];
+              t.xs[v] = xs[v];
+            }
+        }
+        if (!(part.slope < 0)) continue;
+        const double e = energy_and_gradient(setup, t.xs, s, frame_normals, nullptr);
+        if (std::isfinite(e) && e < E && e <= E + 1e-4 * alpha * part.slope) {
+          if (!accepted || e < E_new) {
+            E_new = e;
+            best = std::move(t);
+          }
+          accepted = true;
+          break;
+        }
+      }
+    }
+    if (std::getenv("SKINSLIDE_DEBUG")) {
+      std::fprintf(stderr, "it %d E %.6g -> %.6g cands %zu held %d", it, E, E_new, candidates.size(),
+                   (int)std::count(held.begin(), held.end(), 1));
+      for (const Direction& c : candidates)
+        std::fprintf(stderr, " [amax %.3g slope %.3g]", step_bound(c, nullptr), c.slope);
+      std::fprintf(stderr, "\n");
+    }
     if (!accepted) {
-      result.stop = "no descent";
+      result.stop = "converged";
       break;
     }
     const double decrease = E - E_new;
     for (Index i = 0; i < m; ++i) {
-      if (d[i].isZero(0)) continue;
+      if (best.uv[i] == result.uv[i]) continue;
       const Index v = setup.movable[i];
-      result.uv[i] = trial_uv[i];
-      result.where[i] = trial_where[i];
-      x[v] = trial_x[v];
-      node_uv[v] = trial_uv[i];
+      result.uv[i] = best.uv[i];
+      result.where[i] = best.where[i];
+      node_uv[v] = best.uv[i];
       on_vertex[i] = 0;
     }
-    E = energy_and_gradient(setup, x, s, frame_normals, &g);
+    x = std::move(best.x);
+    xs = std::move(best.xs);
+    E = energy_and_gradient(setup, xs, s, frame_normals, &g);
     result.iterations = it + 1;
     small_steps = decrease < options.tolerance * E0 ? small_steps + 1 : 0;
     if (small_steps >= 2) {
       result.stop = "converged";
       break;
     }
+  }
+  // What is written is measured on the frame's own triangles. Should that be above the frame's
+  // energy (the smooth surface bulges where the flat one creases), the slide is shortened in the
+  // chart, halving, until it is below; at worst the frame comes back unchanged.
+  E = energy_and_gradient(setup, x, s, frame_normals, nullptr);
+  if (!(E < result.energy_before)) {
+    const Positions2 full = result.uv;
+    const std::vector<ChartPoint> full_where = result.where;
+    bool found = false;
+    for (double lambda = 0.5; lambda > 1e-6 && !found; lambda *= 0.5) {
+      Positions2 node = chart.uv;
+      for (Index i = 0; i < m; ++i) {
+        const Index v = setup.movable[i];
+        result.uv[i] = chart.uv[v] + lambda * (full[i] - chart.uv[v]);
+        node[v] = result.uv[i];
+        result.where[i] = locate_in_chart(chart, result.uv[i], full_where[i].triangle);
+        x[v] = surface_point(frame, tris[result.where[i].triangle], result.where[i]);
+      }
+      bool folded = false;
+      for (Index t = 0; t < nt && !folded; ++t) {
+        const Triangle& tri = tris[t];
+        folded = !(cross2(node[tri[1]] - node[tri[0]], node[tri[2]] - node[tri[0]]) > 0);
+      }
+      if (folded || !turned(x).empty()) continue;
+      E = energy_and_gradient(setup, x, s, frame_normals, nullptr);
+      found = E < result.energy_before;
+    }
+    if (!found) {
+      for (Index i = 0; i < m; ++i) {
+        const Index v = setup.movable[i];
+        result.uv[i] = chart.uv[v];
+        const Index t = chart.corner_triangles[chart.corner_start[v]];
+        result.where[i] = ChartPoint{t, {0, 0, 0}};
+        for (int k = 0; k < 3; ++k) result.where[i].weight[k] = tris[t][k] == v ? 1.0 : 0.0;
+        x[v] = frame[v];
+      }
+      E = result.energy_before;
+      result.stop = "no descent";
+    }
+  }
+  if (std::getenv("SKINSLIDE_DEBUG_EDGES")) {
+    int on_edge = 0, on_vertex_count = 0;
+    for (Index i = 0; i < m; ++i) {
+      int zeros = 0;
+      for (double w : result.where[i].weight) zeros += w < 1e-9;
+      on_edge += zeros == 1;
+      on_vertex_count += zeros == 2;
+    }
+    std::fprintf(stderr, "m %d on edge %d on vertex %d E %.6g\n", m, on_edge, on_vertex_count, E);
   }
   result.energy_after = E;
   for (Index i = 0; i < m; ++i) {
