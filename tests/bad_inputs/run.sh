@@ -169,14 +169,26 @@ variant zero_edge.obj '7s/.*/v 2 1 0/'  # vertex 5 on vertex 6: zero-length edge
 expect degenerate_bind_zero_length_edge 0 "sliding vertices" --patch $P "$tmp/zero_edge.obj" $F
 variant sliver.obj '7s/.*/v 0.5 0 0/'  # vertex 5 on the border edge 0-1: zero-area triangle
 expect degenerate_bind_zero_area 0 "sliding vertices" --patch $P "$tmp/sliver.obj" $F
+# Degenerate frames, with each method: the paper's log line counts its locator's fallbacks, the
+# elastic one its relaxation.
 variant collapsed_edge.0001.obj '7s/.*/v 2.2 1 0.4/' $F
-expect degenerate_frame_zero_length_edge 0 "fallbacks" --patch $P $B "$tmp/collapsed_edge.0001.obj"
+expect degenerate_frame_zero_length_edge 0 "1 patches, elastic" --patch $P $B "$tmp/collapsed_edge.0001.obj"
+expect degenerate_frame_zero_length_edge_paper 0 "fallbacks" --method paper --patch $P $B "$tmp/collapsed_edge.0001.obj"
 variant folded.0001.obj '7s/.*/v 2.8 1.5 -0.5/' $F  # vertex 5 pulled across its neighbours
-expect degenerate_frame_folded 0 "fallbacks" --patch $P $B "$tmp/folded.0001.obj"
+expect degenerate_frame_folded 0 "1 patches, elastic" --patch $P $B "$tmp/folded.0001.obj"
+expect degenerate_frame_folded_paper 0 "fallbacks" --method paper --patch $P $B "$tmp/folded.0001.obj"
 awk '/^v /{print "v 1 1 1"; next} {print}' $B >"$tmp/point.0001.obj"
-expect degenerate_frame_all_collapsed 3 "point.0001.obj: patch 0: every bar of the patch has zero (or non-finite) length" --patch $P $B "$tmp/point.0001.obj"
+# Every vertex on one point: the paper's bar net has no length to work with (refused); to the
+# elastic method it is the bind scaled to nothing, at rest: written unchanged.
+expect degenerate_frame_all_collapsed 0 "1 frames slid" --patch $P $B "$tmp/point.0001.obj"
+cmp -s "$tmp/point.0001.obj" "$tmp/out/degenerate_frame_all_collapsed/point.0001.obj" ||
+  fail "degenerate_frame_all_collapsed: the frame was not written unchanged"
+expect degenerate_frame_all_collapsed_paper 3 "point.0001.obj: patch 0: every bar of the patch has zero (or non-finite) length" --method paper --patch $P $B "$tmp/point.0001.obj"
 awk '/^v /{print "v", $2, 0, 0; next} {print}' $B >"$tmp/flat.obj"
 expect degenerate_bind_all_collapsed_to_a_line 0 "1 frames slid" --patch $P "$tmp/flat.obj" $F
+expect degenerate_bind_all_collapsed_to_a_line_paper 0 "1 frames slid" --method paper --patch $P "$tmp/flat.obj" $F
+expect degenerate_bind_zero_length_edge_paper 0 "sliding vertices" --method paper --patch $P "$tmp/zero_edge.obj" $F
+expect degenerate_bind_zero_area_paper 0 "sliding vertices" --method paper --patch $P "$tmp/sliver.obj" $F
 
 # --- glTF (read through --animation, which reads the mesh before looking for a skin) ----------
 # quad.gltf: one indexed quad, positions and indices in a data: URI buffer; valid but not skinned.

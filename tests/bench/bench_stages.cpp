@@ -1,11 +1,14 @@
 // Per-stage timings of skinslide's pipeline, calling the library stages directly.
 //
-//   skinslide_bench_stages [-r REPEAT] [-s auto|cholesky|multigrid|cg] [-l walk|image] -o DIR BIND
-//   PATCH FRAME...
-//       bind read and set-up, then per frame: read (+ topology check), frame net (force
-//       densities + solve, with CG iterations), ID image (-l image), locate, transfer, write;
-//       plus slide_frame as a whole. Prints "name median_ms" lines (medians over frames x
-//       repeats). The I/O floor of a run is the command's own --no-slide.
+//   skinslide_bench_stages [-r REPEAT] [-m paper|elastic] [-s auto|cholesky|multigrid|cg]
+//   [-l walk|image] -o DIR BIND PATCH FRAME...
+//       bind read and set-up, then per frame: read (+ topology check); with -m paper (the
+//       default here, the stages scripts/bench.sh tabulates) frame net (force densities + solve,
+//       with CG iterations), ID image (-l image), locate, transfer; with -m elastic (the
+//       command's default method) relax (with its iterations); then write, plus slide_frame as a
+//       whole. Prints "name median_ms" lines (medians over frames x repeats). -s and -l are
+//       paper options, refused with -m elastic as the command refuses them. The I/O floor of a
+//       run is the command's own --no-slide.
 // Stage times are the thread's CPU time in milliseconds.
 
 #include <algorithm>
@@ -19,10 +22,12 @@
 
 #include "core/allocator.h"
 #include "core/error.h"
+#include "elastic/relax.h"
 #include "io/mesh_file.h"
 #include "io/patch_file.h"
 #include "locate/locate.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/options.h"
 #include "pipeline/slide_frame.h"
 #include "unwrap/bar_net.h"
 #include "unwrap/force_density.h"
@@ -65,6 +70,13 @@ void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3&
   auto t0 = Clock::now();
   Positions3 points(patch.vertices.size());
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
+  if (patch.elastic) {  // the elastic method: one relaxation in the chart (slide_frame's transfer
+                        // of its result is the rest of slide_frame's time)
+    const ElasticResult relaxed = relax_patch(*patch.elastic, points, opt.elastic);
+    s.add("relax", ms_since(t0));
+    s.add("elastic_iterations", relaxed.iterations);
+    return;
+  }
   const std::vector<double> q =
       force_densities(bar_lengths(points, patch.bars), opt.density, opt.q_floor);
   const FrameNetSolution net = patch.solver->solve(q, frame_net_options(opt));
@@ -151,25 +163,30 @@ int main(int argc, char** argv) {
     int repeat = 1;
     std::string out_dir;
     SlideOptions options;
+    options.method = SlideMethod::Paper;
+    bool paper_only = false;
     std::vector<std::string> args;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "-r" && i + 1 < argc)
         repeat = std::max(1, std::atoi(argv[++i]));
+      else if (a == "-m" && i + 1 < argc)
+        options.method = parse_method(argv[++i]);
       else if (a == "-l" && i + 1 < argc)
-        options.locate = parse_locate(argv[++i]);
+        options.locate = parse_locate(argv[++i]), paper_only = true;
       else if (a == "-s" && i + 1 < argc)
-        options.frame_solver = parse_frame_solver(argv[++i]);
+        options.frame_solver = parse_frame_solver(argv[++i]), paper_only = true;
       else if (a == "-o" && i + 1 < argc)
         out_dir = argv[++i];
       else
         args.push_back(a);
     }
-    if (out_dir.empty() || args.size() < 3u) {
+    if (out_dir.empty() || args.size() < 3u ||
+        (paper_only && options.method != SlideMethod::Paper)) {
       std::fprintf(stderr,
-                   "usage: skinslide_bench_stages [-r REPEAT] [-s auto|cholesky|multigrid|cg] [-l "
-                   "walk|image] -o "
-                   "DIR BIND PATCH FRAME...\n");
+                   "usage: skinslide_bench_stages [-r REPEAT] [-m paper|elastic] [-s "
+                   "auto|cholesky|multigrid|cg] [-l walk|image] -o DIR BIND PATCH FRAME...\n"
+                   "  (-s and -l apply to -m paper only)\n");
       return 2;
     }
     return stages(repeat, options, out_dir, args);

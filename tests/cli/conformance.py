@@ -5,8 +5,9 @@ Runs ../shared/reference/oracle.py (needs python3-numpy and python3-scipy) and s
 same rules on the sample cases and on the ICT face (neutral = bind, expressions = frames) and
 checks that every vertex agrees within 1e-8 of the frame's bounding-box diagonal.
 
-Modes compared: `--density paper --holes free` (the oracle's default) and `--density inverse
---holes free` (its --qmode=inverse). Not compared: the elbow with `paper`/`free`, where the method
+The oracle implements the paper's method, so skinslide runs with `--method paper` (the default,
+elastic, has no oracle). Modes compared: `--density paper --holes free` (the oracle's default) and
+`--density inverse --holes free` (its --qmode=inverse). Not compared: the elbow with `paper`/`free`, where the method
 itself is chaotic (the free hole loop collapses towards 1e-12 of the bbox, and 1e-12 input noise
 moves the oracle's own result by 29% of the bbox); its exact invariants are checked by the unit
 tests instead.
@@ -86,7 +87,7 @@ def main():
             if density == "inverse":
                 oracle.append("--qmode=inverse")
             run(oracle)
-            run([binary, "-q", "--density", density, "--holes", "free", "--patch", patch, bind] + frames
+            run([binary, "-q", "--method", "paper", "--density", density, "--holes", "free", "--patch", patch, bind] + frames
                 + ["-o", s_dir])
             for f in frames:
                 base = os.path.basename(f)

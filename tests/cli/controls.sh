@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end checks of the controls (README "Controls"): slide weights, pins, corners and outer
-# loops, the JSON report, the config file, the progress output, and their errors.
+# loops, the JSON report, the config file, the progress output, and their errors. The default
+# method (elastic) runs unless a check is about the paper's method (--method paper: its report
+# keys, its 3D lerp of weights, --corners, --density in a config file).
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/controls.sh
 set -u
 source "$(dirname "$0")/harness.sh"
@@ -27,11 +29,40 @@ cd "$root"
 elbow=(--patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/*.obj)
 nv=$(grep -c '^v ' data/elbow/bind.obj)
 "$bin" -q "${elbow[@]}" -o "$tmp/plain"
+"$bin" -q --method paper "${elbow[@]}" -o "$tmp/paper"
 
 # --- report -------------------------------------------------------------------------------------
 "$bin" -q -j 1 --report "$tmp/r1.json" "${elbow[@]}" -o "$tmp/r1"
 "$bin" -q -j 2 --report "$tmp/r2.json" "${elbow[@]}" -o "$tmp/r2"
-check "the report is JSON with the documented keys" $py - "$tmp/r1.json" <<'PY'
+"$bin" -q -j 1 --method paper --report "$tmp/p1.json" "${elbow[@]}" -o "$tmp/p1"
+"$bin" -q -j 2 --method paper --report "$tmp/p2.json" "${elbow[@]}" -o "$tmp/p2"
+check "the report (default method) is JSON with the documented keys" $py - "$tmp/r1.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
+                   "totals", "timings"], list(r)
+assert r["options"] == {"method": "elastic", "max_iterations": 100, "tolerance": 1e-6}, r["options"]
+assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving", "loops",
+                                 "outer_loop_start", "outer_loop_chosen", "skipped",
+                                 "chart_weights"], list(r["patches"][0])
+p = r["patches"][0]
+assert p["free"] == 288 and p["moving"] == 288 and p["outer_loop_start"] == 352 and not p["skipped"]
+assert [f["path"] for f in r["frames"]] == ["data/elbow/frames/elbow.000%d.obj" % k for k in range(1, 6)]
+keys = ["energy_before", "energy_after", "iterations", "stop", "held", "flips", "moved",
+        "max_slide", "mean_slide", "spread_frame", "spread_slid"]
+for f in r["frames"]:
+    fp = f["patches"][0]
+    assert list(fp) == keys, list(fp)
+    assert fp["energy_after"] <= fp["energy_before"] and fp["flips"] == 0, fp
+    assert fp["stop"] in ("at rest", "converged", "no descent", "limit"), fp
+assert r["frames"][0]["patches"][0]["stop"] == "at rest"  # elbow.0001 is the bind pose
+last = r["frames"][-1]["patches"][0]
+assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and last["iterations"] > 0
+assert list(r["totals"]) == ["frames", "moved", "iterations", "held", "flips", "max_slide"], list(r["totals"])
+assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 5 * 288 and r["totals"]["flips"] == 0
+assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
+PY
+check "the report (--method paper) is JSON with the documented keys" $py - "$tmp/p1.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
@@ -45,9 +76,12 @@ last = r["frames"][-1]["patches"][0]
 assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and not last["direct_solve"]
 assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
 assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 5 * 288
-assert r["options"]["density"] == "inverse" and r["patches"][0]["corners"] == [352, 360, 368, 376]
+assert r["options"]["method"] == "paper" and r["options"]["density"] == "inverse"
+assert r["patches"][0]["corners"] == [352, 360, 368, 376]
 PY
-check "reports of --threads 1 and 2 differ only in timings" $py - "$tmp/r1.json" "$tmp/r2.json" "$tmp/r1" "$tmp/r2" <<'PY'
+for m in r:default p:paper; do
+  check "reports of --threads 1 and 2 differ only in timings (${m#*:})" $py - "$tmp/${m%%:*}1.json" \
+    "$tmp/${m%%:*}2.json" "$tmp/${m%%:*}1" "$tmp/${m%%:*}2" <<'PY'
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 for r, d in ((a, sys.argv[3]), (b, sys.argv[4])):
@@ -57,11 +91,16 @@ for r, d in ((a, sys.argv[3]), (b, sys.argv[4])):
         f["output"] = f["output"][len(d):]
 assert a == b
 PY
+done
 "$bin" -q -j 1 --report "$tmp/n1.json" --report-no-timings "${elbow[@]}" -o "$tmp/n"
 "$bin" -q -j 2 --report "$tmp/n2.json" --report-no-timings "${elbow[@]}" -o "$tmp/n"
 check "--report-no-timings gives identical bytes across thread counts" cmp "$tmp/n1.json" "$tmp/n2.json"
 check "--report-no-timings leaves the timings out" bash -c "! grep -q timings '$tmp/n1.json'"
+"$bin" -q -j 1 --method paper --report "$tmp/n1p.json" --report-no-timings "${elbow[@]}" -o "$tmp/n"
+"$bin" -q -j 2 --method paper --report "$tmp/n2p.json" --report-no-timings "${elbow[@]}" -o "$tmp/n"
+check "--report-no-timings gives identical bytes across thread counts (paper)" cmp "$tmp/n1p.json" "$tmp/n2p.json"
 check "a report does not change the slid frames" same_frames "$tmp/plain" "$tmp/r1"
+check "a report does not change the slid frames (paper)" same_frames "$tmp/paper" "$tmp/p1"
 
 # --- weights ------------------------------------------------------------------------------------
 $py -c "print('# all zero'); [print(0) for _ in range($nv)]" >"$tmp/zero.txt"
@@ -72,9 +111,10 @@ $py -c "[print(v, 1) for v in range($nv)]" >"$tmp/one.txt"
 check "weights 1 (index weight pairs) give the full slide" same_frames "$tmp/plain" "$tmp/w1"
 "$bin" -q --strength 0 "${elbow[@]}" -o "$tmp/s0"
 check "--strength 0 leaves every frame byte-identical" same_frames data/elbow/frames "$tmp/s0"
-"$bin" -q --strength 0.5 "${elbow[@]}" -o "$tmp/s05"
-check "--strength 0.5 puts slid vertices at the midpoint" $py - data/elbow/frames/elbow.0005.obj \
-  "$tmp/plain/elbow.0005.obj" "$tmp/s05/elbow.0005.obj" <<'PY'
+# The paper's method blends in 3D: output = lerp(frame, slid, weight).
+"$bin" -q --method paper --strength 0.5 "${elbow[@]}" -o "$tmp/s05p"
+check "--method paper --strength 0.5 puts slid vertices at the midpoint" $py - data/elbow/frames/elbow.0005.obj \
+  "$tmp/paper/elbow.0005.obj" "$tmp/s05p/elbow.0005.obj" <<'PY'
 import sys
 def verts(p):
     return [[float(x) for x in l.split()[1:4]] for l in open(p) if l.startswith("v ")]
@@ -84,6 +124,25 @@ for a, b, c in zip(f, s, h):
     for k in range(3):
         assert abs(c[k] - (a[k] + b[k]) / 2) < 1e-12, (a, b, c)
     moved += a != b
+assert moved > 200
+PY
+# The elastic method blends in its chart (the vertex stays on the frame's surface): every slid
+# vertex moves, about half as far as with the full slide.
+"$bin" -q --strength 0.5 "${elbow[@]}" -o "$tmp/s05"
+check "--strength 0.5 moves slid vertices about half way" $py - data/elbow/frames/elbow.0005.obj \
+  "$tmp/plain/elbow.0005.obj" "$tmp/s05/elbow.0005.obj" <<'PY'
+import math, sys
+def verts(p):
+    return [[float(x) for x in l.split()[1:4]] for l in open(p) if l.startswith("v ")]
+f, s, h = (verts(p) for p in sys.argv[1:4])
+moved = 0
+for a, b, c in zip(f, s, h):
+    if a == b:
+        assert c == a, (a, c)
+        continue
+    moved += 1
+    ratio = math.dist(a, c) / math.dist(a, b)
+    assert 0.25 < ratio < 0.75, (a, b, c, ratio)
 assert moved > 200
 PY
 # Vertex colours: green 0 (nothing slides), red 1 (everything slides).
@@ -100,8 +159,9 @@ check "weights from a colour channel of 1 give the full slide" same_frames "$tmp
 
 # --- pins ---------------------------------------------------------------------------------------
 printf '# pins\n500-502\nelbow.vtx[600]\n0  # outside the patch: ignored\n' >"$tmp/pins.txt"
-"$bin" -q --pin "$tmp/pins.txt" --report "$tmp/pins.json" "${elbow[@]}" -o "$tmp/pin"
-check "pinned vertices keep the frame's v lines; their neighbours slide" $py - "$tmp/pin" "$tmp/pins.json" <<'PY'
+for method in elastic paper; do
+"$bin" -q --method $method --pin "$tmp/pins.txt" --report "$tmp/pins.json" "${elbow[@]}" -o "$tmp/pin.$method"
+check "pinned vertices keep the frame's v lines; their neighbours slide ($method)" $py - "$tmp/pin.$method" "$tmp/pins.json" <<'PY'
 import json, os, sys
 out = sys.argv[1]
 for name in sorted(os.listdir(out)):
@@ -115,21 +175,28 @@ r = json.load(open(sys.argv[2]))
 assert r["controls"]["pins_requested"] == 5 and r["controls"]["pins_ignored"] == 1
 assert r["patches"][0]["pinned"] == 4 and r["patches"][0]["free"] == 284
 PY
+done
 
 # --- corners and outer loop ---------------------------------------------------------------------
-"$bin" -q --corners 356,364,372,380 --report "$tmp/c.json" "${elbow[@]}" -o "$tmp/corners"
+# Corners are the paper's square's (the elastic chart is a disk): --method paper.
+"$bin" -q --method paper --corners 356,364,372,380 --report "$tmp/c.json" "${elbow[@]}" -o "$tmp/corners"
 check "--corners sets the square's corners" $py -c "
 import json; p = json.load(open('$tmp/c.json'))['patches'][0]
 assert p['corners'] == [356, 364, 372, 380] and p['corners_chosen']"
-check "--corners changes the slide" bash -c "! diff -q '$tmp/plain' '$tmp/corners' >/dev/null"
+check "--corners changes the slide" bash -c "! diff -q '$tmp/paper' '$tmp/corners' >/dev/null"
+"$bin" -q --method paper --outer-loop-vertex 680 --report "$tmp/o.json" "${elbow[@]}" -o "$tmp/outer.paper"
+check "--outer-loop-vertex picks the loop through it (paper)" $py -c "
+import json; r = json.load(open('$tmp/o.json')); p = r['patches'][0]
+assert p['outer_loop_start'] == 672 and p['outer_loop_chosen'] and r['totals']['frame_net_flips'] == 0"
 "$bin" -q --outer-loop-vertex 680 --report "$tmp/o.json" "${elbow[@]}" -o "$tmp/outer"
 check "--outer-loop-vertex picks the loop through it" $py -c "
 import json; r = json.load(open('$tmp/o.json')); p = r['patches'][0]
-assert p['outer_loop_start'] == 672 and p['outer_loop_chosen'] and r['totals']['frame_net_flips'] == 0"
+assert p['outer_loop_start'] == 672 and p['outer_loop_chosen'] and r['totals']['flips'] == 0"
 
 # --- config file --------------------------------------------------------------------------------
 cat >"$tmp/job.toml" <<TOML
 # a farm job's options
+method = "paper"
 density = "paper"
 threads = 2
 patch = ["data/elbow/patch.txt"]
@@ -143,6 +210,19 @@ assert r['options']['density'] == 'paper' and 'timings' not in r"
 "$bin" -q --config "$tmp/job.toml" --density uniform data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/cfg"
 check "the command line overrides the config file" $py -c "
 import json; assert json.load(open('$tmp/cfg.json'))['options']['density'] == 'uniform'"
+cat >"$tmp/elastic.toml" <<TOML
+max-iterations = 5
+patch = ["data/elbow/patch.txt"]
+report = "$tmp/cfg_e.json"
+TOML
+"$bin" -q --config "$tmp/elastic.toml" data/elbow/bind.obj data/elbow/frames/*.obj -o "$tmp/cfg_e"
+check "config file values apply (default method)" $py -c "
+import json; r = json.load(open('$tmp/cfg_e.json'))
+assert r['options']['method'] == 'elastic' and r['options']['max_iterations'] == 5
+assert max(f['patches'][0]['iterations'] for f in r['frames']) <= 5"
+printf 'density = "paper"\n' >"$tmp/density.toml"
+check "a paper option in a config file is refused with the default method (2)" \
+  fails_with 2 "--density: applies to --method paper only" --config "$tmp/density.toml" "${elbow[@]}" -o "$tmp/e00"
 check "a missing config file is a usage error (2)" fails_with 2 "--config" --config "$tmp/none.toml" "${elbow[@]}" -o "$tmp/e0"
 
 # --- progress -----------------------------------------------------------------------------------
@@ -164,10 +244,12 @@ printf '5\n2000\n' >"$tmp/badpins.txt"
 check "a pin past the last vertex is an input error (3)" fails_with 3 "$tmp/badpins.txt:2: vertex 2000 is out of range" \
   --pin "$tmp/badpins.txt" "${elbow[@]}" -o "$tmp/e2"
 check "corners off the loop name the vertex (2)" fails_with 2 "vertex 700 is not on the boundary loop through vertex 356" \
-  --corners 356,364,372,700 "${elbow[@]}" -o "$tmp/e3"
+  --method paper --corners 356,364,372,700 "${elbow[@]}" -o "$tmp/e3"
 check "corners against the walk say the walking order (2)" fails_with 2 "walking from 380 the loop meets them as 380,356,364,372" \
-  --corners 380,372,364,356 "${elbow[@]}" -o "$tmp/e4"
-check "three corners are a usage error (2)" fails_with 2 "expected four vertex ids" --corners 1,2,3 "${elbow[@]}" -o "$tmp/e5"
+  --method paper --corners 380,372,364,356 "${elbow[@]}" -o "$tmp/e4"
+check "three corners are a usage error (2)" fails_with 2 "expected four vertex ids" --method paper --corners 1,2,3 "${elbow[@]}" -o "$tmp/e5"
+check "--corners with the default method is a usage error (2)" fails_with 2 \
+  "--corners: applies to --method paper only" --corners 356,364,372,380 "${elbow[@]}" -o "$tmp/e5e"
 check "an outer-loop vertex inside the patch is a usage error (2)" fails_with 2 "vertex 400 is not on a boundary loop" \
   --outer-loop-vertex 400 "${elbow[@]}" -o "$tmp/e6"
 check "--weights and --weights-from-obj-color conflict (2)" fails_with 2 "excludes" \

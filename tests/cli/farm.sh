@@ -2,7 +2,8 @@
 # Identical bytes on every farm: outputs do not depend on --threads (1, 2, 8), on running the
 # frames all together, one at a time or in reverse order, on which run it is, nor on splitting a
 # shot into --frames chunks run side by side (xargs -P) as a render farm does. And a run killed
-# with SIGKILL leaves each output either as it was before or complete, never partial.
+# with SIGKILL leaves each output either as it was before or complete, never partial. The default
+# method (elastic) throughout; thread counts, order and the farm split with --method paper too.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/farm.sh
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -60,6 +61,14 @@ check "one frame at a time gives identical bytes" same_tree "$tmp/t1" "$tmp/sing
 check "frames 1 and 6 (same input) give the same bytes" cmp "$tmp/t1/arm.0001.obj" "$tmp/t1/arm.0006.obj"
 check "frames 1 and 2 (different inputs) differ" bash -c "! cmp -s '$tmp/t1/arm.0001.obj' '$tmp/t1/arm.0002.obj'"
 
+# The paper's method too: thread counts, reversed order and a farm split give the same bytes.
+check "whole shot, --method paper --threads 1" slide --method paper -j 1 -o "$tmp/p1" "${frames[@]}"
+check "whole shot, --method paper --threads 8" slide --method paper -j 8 -o "$tmp/p8" "${frames[@]}"
+check "--method paper: --threads 1 and 8 give identical bytes" same_tree "$tmp/p1" "$tmp/p8" 24
+check "--method paper: reversed order" slide --method paper -j 2 -o "$tmp/prev" "${reversed[@]}"
+check "--method paper: reversed order gives identical bytes" same_tree "$tmp/p1" "$tmp/prev" 24
+check "--method paper: the methods differ" bash -c "! cmp -s '$tmp/p1/arm.0003.obj' '$tmp/t1/arm.0003.obj'"
+
 # --- a task pinned to some cores -----------------------------------------------------------------
 # A farm node runs several tasks, each pinned to its share of the cores (taskset, cpusets): -j 0
 # (the default) takes the cores in the task's affinity, not every core of the node.
@@ -80,6 +89,10 @@ check "the chunks run side by side (xargs -P 3)" \
   xargs -P 3 -I RANGE "$bin" -q -j 1 --frames RANGE -o "$tmp/farm" --patch data/elbow/patch.txt \
   data/elbow/bind.obj "${frames[@]}" <"$tmp/chunks"
 check "the farm split gives the whole run's bytes" same_tree "$tmp/t1" "$tmp/farm" 24
+check "the chunks run side by side (xargs -P 3, --method paper)" \
+  xargs -P 3 -I RANGE "$bin" -q -j 1 --method paper --frames RANGE -o "$tmp/pfarm" --patch data/elbow/patch.txt \
+  data/elbow/bind.obj "${frames[@]}" <"$tmp/chunks"
+check "the farm split gives the whole run's bytes (--method paper)" same_tree "$tmp/p1" "$tmp/pfarm" 24
 # Steps and lists pick exactly the frames they name.
 check "--frames 1-24:5,3,20-21" slide -o "$tmp/step" --frames 1-24:5,3,20-21 "${frames[@]}"
 check "--frames 1-24:5,3,20-21 writes frames 1 3 6 11 16 20 21" test \
