@@ -509,7 +509,11 @@ int run(const CliOptions& o) {
           "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n", p,
           n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
           n.skipped ? " (skipped)" : "", n.bind_net_flips);
-      if (!n.skipped)
+      if (!n.skipped && n.elastic)  // the elastic chart is a disk: no corners
+        std::fprintf(stderr, "    outer loop from vertex %d%s, %zu pinned\n",
+                     n.vertices[n.loops[n.outer_loop].front()],
+                     n.outer_loop_chosen ? " (chosen)" : "", n.pinned.size());
+      else if (!n.skipped)
         std::fprintf(stderr, "    outer loop from vertex %d%s, corners %d,%d,%d,%d%s, %zu pinned\n",
                      n.vertices[n.loops[n.outer_loop].front()],
                      n.outer_loop_chosen ? " (chosen)" : "", n.vertices[n.corners[0]],
