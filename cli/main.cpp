@@ -56,6 +56,7 @@ struct CliOptions {
   std::string preview_dir;  // --preview: PNG pictures of the nets; empty = none
   int preview_size = 1024;
   std::string method = "elastic";
+  int rotation_fits = ElasticOptions{}.rotation_fits;
   int max_iterations = ElasticOptions{}.max_iterations;
   double tolerance = ElasticOptions{}.tolerance;
   std::string density = "inverse";
@@ -232,6 +233,7 @@ std::vector<size_t> chosen_frames(const std::vector<FrameRange>& ranges,
 SlideOptions slide_options(const CliOptions& o) {
   SlideOptions s;
   s.method = parse_method(o.method);
+  s.elastic.rotation_fits = o.rotation_fits;
   s.elastic.max_iterations = o.max_iterations;
   s.elastic.tolerance = o.tolerance;
   s.density = parse_density(o.density);
@@ -700,14 +702,20 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"elastic", "paper"}))
       ->group(method);
+  app.add_option("--rotation-fits", o.rotation_fits,
+                 "Elastic: ARAP local/global rounds (fit each triangle's rotation, then relax with "
+                 "them held); more reach lower energies, fewer pop less from frame to frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000))
+      ->group(method);
   app.add_option("--max-iterations", o.max_iterations,
-                 "Elastic: steps per patch and frame at most")
+                 "Elastic: Gauss-Newton steps per round at most")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000))
       ->group(method);
   app.add_option("--tolerance", o.tolerance,
-                 "Elastic: stop once two steps in a row each lower the energy by less than this "
-                 "fraction of the frame's")
+                 "Elastic: a round stops once two steps in a row each lower its energy by less "
+                 "than this fraction of its starting energy")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(method);
@@ -857,7 +865,7 @@ int main(int argc, char** argv) {
       if (paper == false && app.count(name) > 0)
         throw CLI::ValidationError(name, std::string("applies to --method paper only, not to "
                                                      "--method elastic"));
-    for (const char* name : {"--max-iterations", "--tolerance"})
+    for (const char* name : {"--rotation-fits", "--max-iterations", "--tolerance"})
       if (paper && app.count(name) > 0)
         throw CLI::ValidationError(name, std::string("applies to --method elastic only, not to "
                                                      "--method paper"));

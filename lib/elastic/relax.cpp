@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -42,16 +40,24 @@ Eigen::Matrix2d rest_inverse(const Vec3& a, const Vec3& b, const Vec3& c) {
   return B.inverse();
 }
 
-struct TriangleEnergy {
+bool has_rest_shape(const Eigen::Matrix2d& D) { return D(0, 0) != 0; }
+
+Mat32 deformation_gradient(const Positions3& x, const Triangle& t, const Eigen::Matrix2d& D) {
+  Mat32 e;
+  e.col(0) = x[t[1]] - x[t[0]];
+  e.col(1) = x[t[2]] - x[t[0]];
+  return e * D;
+}
+
+// The rotation nearest J (3x2, orthonormal columns: ARAP's local step) and the ARAP energy
+// (s1 - s)^2 + (s2 - s)^2 of J's singular values, which is |J - s R|^2 for that R.
+struct RotationFit {
   double energy = 0;
-  Mat32 dJ = Mat32::Zero();  // dE/dJ, unweighted
+  Mat32 rotation = Mat32::Zero();
 };
 
-// e = (s1 - s)^2 + (s2 - s)^2 over J's singular values, from |J|^2 and det(J^T J): s1 + s2 =
-// sqrt(|J|^2 + 2 sqrt(det)). dE/dJ = 2 (J - s R), R = J's polar factor, J (J^T J)^(-1/2).
-TriangleEnergy triangle_energy(const Mat32& J, double s, const Vec3& frame_normal,
-                               bool gradient) {
-  TriangleEnergy out;
+RotationFit fit_rotation(const Mat32& J, double s, const Vec3& frame_normal) {
+  RotationFit out;
   const double a = J.col(0).squaredNorm(), b = J.col(0).dot(J.col(1)),
                c = J.col(1).squaredNorm();
   const double tr = a + c;
@@ -62,55 +68,65 @@ TriangleEnergy triangle_energy(const Mat32& J, double s, const Vec3& frame_norma
   const double det = std::max(a * c - b * b, 0.0);
   const double l2 = l1 > 0 ? det / l1 : 0.0;
   const double s1 = std::sqrt(l1), s2 = std::sqrt(l2);
-  const double delta = s1 * s2;
-  const double tau = s1 + s2;
   out.energy = (s1 - s) * (s1 - s) + (s2 - s) * (s2 - s);
-  if (!gradient) return out;
-  Mat32 R = Mat32::Zero();
-  if (delta > 1e-12 * tr) {
-    // (J^T J + delta I)^-1 tau = (J^T J)^(-1/2) for 2x2 (the closed-form square root).
-    Eigen::Matrix2d adj;
-    adj << c + delta, -b, -b, a + delta;
-    R = J * adj / (delta * tau);
-  } else if (tr > 0) {
-    // Rank one: R = u1 v1^T + u2 v2^T with u2 in the frame's tangent plane.
-    Vec2 v1 = std::abs(b) > 0 ? Vec2(b, l1 - a) : (a >= c ? Vec2(1, 0) : Vec2(0, 1));
-    v1.normalize();
-    const Vec2 v2(-v1.y(), v1.x());
-    const Vec3 u1 = (J * v1).normalized();
-    const double nn = frame_normal.norm();
-    const Vec3 u2 = nn > 0 ? Vec3(frame_normal.cross(u1) / nn) : Vec3::Zero();
-    R = u1 * v1.transpose() + u2 * v2.transpose();
+  if (!(tr > 0)) return out;
+  // R = U V^T from J's singular vectors; with J of rank one, U's second column lies in the
+  // frame's tangent plane.
+  Vec2 v1 = std::abs(b) > 0 ? Vec2(b, l1 - a) : (a >= c ? Vec2(1, 0) : Vec2(0, 1));
+  v1.normalize();
+  const Vec2 v2(-v1.y(), v1.x());
+  const Vec3 u1 = J * v1 / s1;
+  Vec3 u2 = Vec3::Zero();
+  if (s2 > 1e-12 * s1) {
+    u2 = J * v2 / s2;
+  } else if (const double nn = frame_normal.norm(); nn > 0) {
+    u2 = frame_normal.cross(u1) / nn;
   }
-  out.dJ = 2 * (J - s * R);
+  out.rotation = u1 * v1.transpose() + u2 * v2.transpose();
   return out;
 }
 
-Mat32 deformation_gradient(const Positions3& x, const Triangle& t, const Eigen::Matrix2d& D) {
-  Mat32 e;
-  e.col(0) = x[t[1]] - x[t[0]];
-  e.col(1) = x[t[2]] - x[t[0]];
-  return e * D;
+// The ARAP energy of the patch at x: w sum_t min_R |J_t - s R|^2.
+double arap_energy(const ElasticSetup& setup, const Positions3& x, double s,
+                   const std::vector<Vec3>& frame_normals) {
+  const auto& tris = setup.chart.triangles;
+  double total = 0;
+  for (Index t = 0; t < setup.chart.patch_triangle_count; ++t) {
+    const Eigen::Matrix2d& D = setup.rest_inverse[t];
+    if (has_rest_shape(D))
+      total += fit_rotation(deformation_gradient(x, tris[t], D), s, frame_normals[t]).energy;
+  }
+  return setup.triangle_weight * total;
 }
 
-bool has_rest_shape(const Eigen::Matrix2d& D) { return D(0, 0) != 0; }
-
-// Energy, and optionally its gradient per local vertex.
-double energy_and_gradient(const ElasticSetup& setup, const Positions3& x, double s,
-                           const std::vector<Vec3>& frame_normals, Positions3* gradient) {
+// ARAP's local step: every triangle's nearest rotation at x.
+std::vector<Mat32> fitted_rotations(const ElasticSetup& setup, const Positions3& x,
+                                    const std::vector<Vec3>& frame_normals) {
   const auto& tris = setup.chart.triangles;
-  const Index nt = setup.chart.patch_triangle_count;
+  std::vector<Mat32> R(setup.chart.patch_triangle_count, Mat32::Zero());
+  for (Index t = 0; t < setup.chart.patch_triangle_count; ++t) {
+    const Eigen::Matrix2d& D = setup.rest_inverse[t];
+    if (has_rest_shape(D))
+      R[t] = fit_rotation(deformation_gradient(x, tris[t], D), 1.0, frame_normals[t]).rotation;
+  }
+  return R;
+}
+
+// ARAP's global energy with the rotations held, w sum_t |J_t - s R_t|^2, and optionally its
+// gradient per local vertex.
+double held_rotation_energy(const ElasticSetup& setup, const Positions3& x, double s,
+                            const std::vector<Mat32>& R, Positions3* gradient) {
+  const auto& tris = setup.chart.triangles;
   if (gradient) gradient->assign(x.size(), Vec3::Zero());
   double total = 0;
-  for (Index t = 0; t < nt; ++t) {
+  for (Index t = 0; t < setup.chart.patch_triangle_count; ++t) {
     const Eigen::Matrix2d& D = setup.rest_inverse[t];
     if (!has_rest_shape(D)) continue;
-    const Mat32 J = deformation_gradient(x, tris[t], D);
-    const TriangleEnergy te = triangle_energy(J, s, frame_normals[t], gradient != nullptr);
-    total += te.energy;
+    const Mat32 r = deformation_gradient(x, tris[t], D) - s * R[t];
+    total += r.squaredNorm();
     if (!gradient) continue;
     const std::array<Vec2, 3> G = gradient_rows(D);
-    for (int k = 0; k < 3; ++k) (*gradient)[tris[t][k]] += setup.triangle_weight * (te.dJ * G[k]);
+    for (int k = 0; k < 3; ++k) (*gradient)[tris[t][k]] += 2 * setup.triangle_weight * (r * G[k]);
   }
   return setup.triangle_weight * total;
 }
@@ -127,51 +143,6 @@ Mat32 chart_jacobian(const ElasticSetup& setup, const Positions3& frame, Index t
 Vec3 surface_point(const Positions3& frame, const Triangle& tri, const ChartPoint& p) {
   return p.weight[0] * frame[tri[0]] + p.weight[1] * frame[tri[1]] + p.weight[2] * frame[tri[2]];
 }
-
-// The smooth surface the relaxation measures its energy on: Phong tessellation (Boubekeur & Alexa
-// 2008) of the frame's triangles, which passes through every frame vertex with the vertex's
-// tangent plane there. On the flat triangles themselves a vertex that slides onto a crease finds
-// every way on uphill and stays there in one frame and not in the next: it pops. The slid
-// vertex is written on the flat triangle, at the same chart point.
-constexpr double kPhongShape = 0.75;
-
-struct SmoothSurface {
-  const Positions3& frame;
-  const std::vector<Triangle>& triangles;
-  const std::vector<Eigen::Matrix2d>& inverse_edges;
-  std::vector<Vec3> normal;  // per vertex: unit, or zero where its triangles have no area
-
-  Vec3 point(Index t, const std::array<double, 3>& w) const {
-    const Triangle& tri = triangles[t];
-    const Vec3 p = w[0] * frame[tri[0]] + w[1] * frame[tri[1]] + w[2] * frame[tri[2]];
-    Vec3 lift = Vec3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& n = normal[tri[k]];
-      lift += w[k] * (p - frame[tri[k]]).dot(n) * n;
-    }
-    return p - kPhongShape * lift;
-  }
-
-  // dPoint/du at barycentrics w of chart triangle t (w need not be clamped).
-  Mat32 jacobian(Index t, const std::array<double, 3>& w) const {
-    const Triangle& tri = triangles[t];
-    const Vec3 p = w[0] * frame[tri[0]] + w[1] * frame[tri[1]] + w[2] * frame[tri[2]];
-    const Eigen::Matrix2d& M = inverse_edges[t];
-    const std::array<Vec2, 3> dw{Vec2(-(M.row(0) + M.row(1)).transpose()),
-                                 Vec2(M.row(0).transpose()), Vec2(M.row(1).transpose())};
-    Mat32 J = Mat32::Zero();
-    for (int j = 0; j < 3; ++j) {
-      const Vec3& xj = frame[tri[j]];
-      Vec3 dj = xj - kPhongShape * (p - xj).dot(normal[tri[j]]) * normal[tri[j]];
-      for (int k = 0; k < 3; ++k) {
-        const Vec3& n = normal[tri[k]];
-        dj -= kPhongShape * w[k] * n.dot(xj) * n;
-      }
-      J += dj * dw[j].transpose();
-    }
-    return J;
-  }
-};
 
 // At a chart vertex Phi has no Jacobian: the least-squares linear map from the vertex's chart
 // one-ring to its frame one-ring, projected on the frame's tangent plane there (edges weighted by
@@ -390,14 +361,12 @@ ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>
   return setup;
 }
 
-double elastic_energy(const ElasticSetup& setup, const std::vector<Triangle>& triangles,
-                      const Positions3& x, double scale) {
-  std::vector<Vec3> normals(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const Triangle& tri = triangles[t];
-    normals[t] = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]);
-  }
-  return energy_and_gradient(setup, x, scale, normals, nullptr);
+double elastic_energy(const ElasticSetup& setup, const Positions3& x, double scale) {
+  const auto& tris = setup.chart.triangles;
+  std::vector<Vec3> normals(setup.chart.patch_triangle_count);
+  for (size_t t = 0; t < normals.size(); ++t)
+    normals[t] = (x[tris[t][1]] - x[tris[t][0]]).cross(x[tris[t][2]] - x[tris[t][0]]);
+  return arap_energy(setup, x, scale, normals);
 }
 
 ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
@@ -411,7 +380,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   result.where.resize(m);
   result.position.resize(m);
   // The start: every movable vertex exactly at its frame position, on a triangle around it.
-  for (Index i = 0; i < m; ++i) {
+  const auto at_start = [&](Index i) {
     const Index v = setup.movable[i];
     result.uv[i] = chart.uv[v];
     const Index t = chart.corner_triangles[chart.corner_start[v]];
@@ -419,7 +388,8 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     for (int k = 0; k < 3; ++k) p.weight[k] = tris[t][k] == v ? 1.0 : 0.0;
     result.where[i] = p;
     result.position[i] = frame[v];
-  }
+  };
+  for (Index i = 0; i < m; ++i) at_start(i);
   if (m == 0) return result;
   std::vector<Vec3> frame_normals(nt);
   double frame_area = 0;
@@ -430,38 +400,27 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   }
   const double s = setup.bind_area > 0 ? std::sqrt(frame_area / setup.bind_area) : 1.0;
   result.scale = s;
-  Positions3 x = frame;   // the slid patch, on the frame's triangles
-  Positions3 xs = frame;  // the same chart points on the smooth surface
-  Positions3 g;
-  double E = energy_and_gradient(setup, x, s, frame_normals, &g);
-  result.energy_before = result.energy_after = E;
-  if (!std::isfinite(E))
+  Positions3 x = frame;  // the slid patch (local ids)
+  result.energy_before = result.energy_after = arap_energy(setup, x, s, frame_normals);
+  if (!std::isfinite(result.energy_before) || !std::isfinite(s))
     throw Error(ErrorKind::Numeric, "the frame's elastic energy is not finite");
   // A frame that is the bind up to a rigid motion and a uniform scale has nothing to undo; its
   // energy is round-off.
-  if (E <= 1e-20 * setup.bind_area || !std::isfinite(s)) {
+  if (result.energy_before <= 1e-20 * setup.bind_area) {
     result.stop = "at rest";
     return result;
   }
-  const double E0 = E;
-  SmoothSurface smooth{frame, tris, chart.inverse_edges, {}};
-  smooth.normal.assign(frame.size(), Vec3::Zero());
-  for (Index t = 0; t < nt; ++t)
-    for (Index v : tris[t]) smooth.normal[v] += frame_normals[t];
-  for (Vec3& n : smooth.normal) {
-    const double len = n.norm();
-    n = len > 0 ? Vec3(n / len) : Vec3::Zero();
-  }
-  const auto smooth_jacobian = [&](Index i, Index t) {
-    return smooth.jacobian(t, chart_barycentric(chart, t, result.uv[i]));
-  };
+  std::vector<Mat32> jacobian(nt);
+  for (Index t = 0; t < nt; ++t) jacobian[t] = chart_jacobian(setup, frame, t);
   std::vector<char> on_vertex(m, 1);
   StepSystem system(setup);
   Positions2 node_uv = chart.uv;  // every node's chart point: movable ones follow the slide
   std::vector<Mat32> T(m);
   std::vector<char> held(m);
   std::vector<int> switched(m);
-  const Index hold_cap = std::max<Index>(16, m / 10);
+  std::vector<Mat32> R;  // the rotations of the current round
+  Positions3 g;          // the held-rotation energy's gradient at x
+  double E = 0;          // the held-rotation energy at x
 
   // A direction's true first-order change: each vertex moves with the Jacobian of the triangle
   // it enters.
@@ -481,7 +440,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
       const Index v = setup.movable[i];
       out.entered[i] = entered_triangle(chart, on_vertex[i] ? v : -1, result.uv[i],
                                         result.where[i].triangle, out.d[i]);
-      out.T_true[i] = smooth_jacobian(i, out.entered[i]);
+      out.T_true[i] = jacobian[out.entered[i]];
       out.model += g[v].dot(T[i] * out.d[i]);
       out.slope += g[v].dot(out.T_true[i] * out.d[i]);
     }
@@ -491,26 +450,22 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   struct Trial {
     Positions2 uv;
     std::vector<ChartPoint> where;
-    Positions3 x;   // on the frame's triangles: what is written
-    Positions3 xs;  // on the smooth surface: what the energy measures
+    Positions3 x;
   };
   const auto trial = [&](const Direction& dir, double alpha) {
-    Trial t{result.uv, result.where, x, xs};
+    Trial t{result.uv, result.where, x};
     for (Index i = 0; i < m; ++i) {
       if (dir.d[i].isZero(0)) continue;
       const Index v = setup.movable[i];
       t.uv[i] = result.uv[i] + alpha * dir.d[i];
       t.where[i] = locate_in_chart(chart, t.uv[i], dir.entered[i]);
       t.x[v] = surface_point(frame, tris[t.where[i].triangle], t.where[i]);
-      t.xs[v] = smooth.point(t.where[i].triangle, t.where[i].weight);
     }
     return t;
   };
   // Slid triangles turned against (or flat on) the frame's own, where the frame's has area.
-  const bool no_guard = std::getenv("SKINSLIDE_NO_GUARD") != nullptr;
   const auto turned = [&](const Positions3& y) {
     std::vector<Index> out;
-    if (no_guard) return out;
     for (Index t = 0; t < nt; ++t) {
       const Triangle& tri = tris[t];
       if (frame_normals[t].isZero(0)) continue;
@@ -524,15 +479,6 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     for (Index i = 0; i < m; ++i) node_d[setup.movable[i]] = dir.d[i];
     return max_step(setup, node_uv, node_d, roots);
   };
-  // Holds every movable corner of triangle t; false when none was free.
-  const auto hold_triangle = [&](Index t) {
-    bool any = false;
-    for (Index v : tris[t]) {
-      const Index i = setup.movable_slot[v];
-      if (i >= 0 && !held[i]) held[i] = any = true;
-    }
-    return any;
-  };
   // A vertex still on its chart vertex was modelled with its tangent plane's least-squares map;
   // its chart step is the one that moves it, in the wedge that holds that step, as the model
   // meant: the wedge's own map inverted on the model's 3D motion.
@@ -545,9 +491,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
       const Index t = chart.corner_triangles[k];
       const Triangle& tri = tris[t];
       const int c = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-      std::array<double, 3> w{0, 0, 0};
-      w[c] = 1;
-      const Mat32 Tk = smooth.jacobian(t, w);
+      const Mat32& Tk = jacobian[t];
       const Eigen::Matrix2d A = Tk.transpose() * Tk;
       if (!(std::abs(A.determinant()) > 0)) continue;
       const Vec2 dk = A.inverse() * (Tk.transpose() * motion);
@@ -570,13 +514,23 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
       if (on_vertex[i] && !held[i] && switched[i] == 0 && !d[i].isZero(0)) d[i] = redirected(i, d[i]);
     return direction(std::move(d));
   };
+  // Holds every movable corner of triangle t; false when none was free.
+  const auto hold_triangle = [&](Index t) {
+    bool any = false;
+    for (Index v : tris[t]) {
+      const Index i = setup.movable_slot[v];
+      if (i >= 0 && !held[i]) held[i] = any = true;
+    }
+    return any;
+  };
+  const Index hold_cap = std::max<Index>(16, m / 10);
 
-  int small_steps = 0;
-  result.stop = "limit";
-  for (int it = 0; it < options.max_iterations; ++it) {
+  // One step of the global solve: Gauss-Newton in the chart, made a descent and fold-free.
+  // False when no step lowers the energy.
+  const auto step = [&]() {
     for (Index i = 0; i < m; ++i)
       T[i] = on_vertex[i] ? vertex_jacobian(setup, frame, frame_normals, setup.movable[i])
-                          : smooth_jacobian(i, result.where[i].triangle);
+                          : jacobian[result.where[i].triangle];
     std::fill(held.begin(), held.end(), 0);
     std::fill(switched.begin(), switched.end(), 0);
     Direction dir = solved();
@@ -599,9 +553,9 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
       if (!changed) break;
       dir = solved();
     }
-    // Steps that a few triangles cut short (one about to turn over in the chart or against the
-    // frame) leave the rest of the patch stuck: those triangles' vertices are held and the step
-    // solved again, within a budget of held vertices; both steps are then tried.
+    // A step that a few triangles cut short (about to turn over in the chart, or against the
+    // frame) would leave the rest of the patch stuck: those triangles' vertices are held and the
+    // step solved again, within a budget of held vertices; both steps are then tried.
     std::vector<Direction> candidates{dir};
     Index budget = hold_cap;
     for (int round = 0; round < 12; ++round) {
@@ -647,8 +601,9 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
       }
     result.held += static_cast<int>(std::count(held.begin(), held.end(), 1));
     // Line search on each candidate: from 0.8 of the step that turns a chart triangle over (at
-    // most 1), halved until no slid triangle turns against the frame and the energy falls by
-    // Armijo's rule; the lower energy wins.
+    // most 1), halved until the energy falls by Armijo's rule; the vertices of slid triangles
+    // that would turn against the frame stay where they are and the rest take the step (until
+    // nothing turns: a triangle whose corners all stay is as it is now). The lower energy wins.
     bool accepted = false;
     double E_new = E;
     Trial best;
@@ -656,28 +611,22 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
       if (!(c.slope < 0)) continue;
       double alpha = std::min(1.0, 0.8 * step_bound(c, nullptr));
       for (int halving = 0; halving < 40 && alpha > 0; ++halving, alpha *= 0.5) {
-        // The vertices of slid triangles that would turn against the frame stay where they are
-        // and the rest take the step (until nothing turns: a triangle all of whose corners stay
-        // is as it is now, untouched).
         Direction part = c;
         Trial t = trial(part, alpha);
         for (std::vector<Index> bad = turned(t.x); !bad.empty() && part.slope < 0;
-             bad = turned(t.x)) {
-          for (Index b : bad)
-            for (Index v : tris[b]) {
+             bad = turned(t.x))
+          for (Index q : bad)
+            for (Index v : tris[q]) {
               const Index i = setup.movable_slot[v];
               if (i < 0 || part.d[i].isZero(0)) continue;
               part.slope -= g[v].dot(part.T_true[i] * part.d[i]);
               part.d[i] = Vec2::Zero();
-              part.entered[i] = result.where[i].triangle;
               t.uv[i] = result.uv[i];
               t.where[i] = result.where[i];
               t.x[v] = x[v];
-              t.xs[v] = xs[v];
             }
-        }
         if (!(part.slope < 0)) continue;
-        const double e = energy_and_gradient(setup, t.xs, s, frame_normals, nullptr);
+        const double e = held_rotation_energy(setup, t.x, s, R, nullptr);
         if (std::isfinite(e) && e < E && e <= E + 1e-4 * alpha * part.slope) {
           if (!accepted || e < E_new) {
             E_new = e;
@@ -688,86 +637,49 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
         }
       }
     }
-    if (std::getenv("SKINSLIDE_DEBUG")) {
-      std::fprintf(stderr, "it %d E %.6g -> %.6g cands %zu held %d", it, E, E_new, candidates.size(),
-                   (int)std::count(held.begin(), held.end(), 1));
-      for (const Direction& c : candidates)
-        std::fprintf(stderr, " [amax %.3g slope %.3g]", step_bound(c, nullptr), c.slope);
-      std::fprintf(stderr, "\n");
-    }
-    if (!accepted) {
-      result.stop = "converged";
-      break;
-    }
-    const double decrease = E - E_new;
+    if (!accepted) return false;
     for (Index i = 0; i < m; ++i) {
       if (best.uv[i] == result.uv[i]) continue;
-      const Index v = setup.movable[i];
       result.uv[i] = best.uv[i];
       result.where[i] = best.where[i];
-      node_uv[v] = best.uv[i];
+      node_uv[setup.movable[i]] = best.uv[i];
       on_vertex[i] = 0;
     }
     x = std::move(best.x);
-    xs = std::move(best.xs);
-    E = energy_and_gradient(setup, xs, s, frame_normals, &g);
-    result.iterations = it + 1;
-    small_steps = decrease < options.tolerance * E0 ? small_steps + 1 : 0;
-    if (small_steps >= 2) {
-      result.stop = "converged";
-      break;
+    return true;
+  };
+
+  // ARAP's local/global alternation, a fixed number of rounds: fit each triangle's rotation to
+  // the slid patch (at first the frame), then lower the energy with those rotations held, on the
+  // surface, to convergence. Each round's result moves smoothly with the frame; full ARAP (many
+  // rounds) has minima that jump from one frame to the next.
+  result.stop = "converged";
+  for (int round = 0; round < options.rotation_fits; ++round) {
+    R = fitted_rotations(setup, x, frame_normals);
+    E = held_rotation_energy(setup, x, s, R, &g);
+    const double E_round = E;
+    int small_steps = 0;
+    int it = 0;
+    for (; it < options.max_iterations; ++it) {
+      const double E_old = E;
+      if (!step()) break;
+      E = held_rotation_energy(setup, x, s, R, &g);
+      ++result.iterations;
+      small_steps = E_old - E < options.tolerance * E_round ? small_steps + 1 : 0;
+      if (small_steps >= 2) break;
     }
+    if (it == options.max_iterations) result.stop = "limit";
   }
-  // What is written is measured on the frame's own triangles. Should that be above the frame's
-  // energy (the smooth surface bulges where the flat one creases), the slide is shortened in the
-  // chart, halving, until it is below; at worst the frame comes back unchanged.
-  E = energy_and_gradient(setup, x, s, frame_normals, nullptr);
-  if (!(E < result.energy_before)) {
-    const Positions2 full = result.uv;
-    const std::vector<ChartPoint> full_where = result.where;
-    bool found = false;
-    for (double lambda = 0.5; lambda > 1e-6 && !found; lambda *= 0.5) {
-      Positions2 node = chart.uv;
-      for (Index i = 0; i < m; ++i) {
-        const Index v = setup.movable[i];
-        result.uv[i] = chart.uv[v] + lambda * (full[i] - chart.uv[v]);
-        node[v] = result.uv[i];
-        result.where[i] = locate_in_chart(chart, result.uv[i], full_where[i].triangle);
-        x[v] = surface_point(frame, tris[result.where[i].triangle], result.where[i]);
-      }
-      bool folded = false;
-      for (Index t = 0; t < nt && !folded; ++t) {
-        const Triangle& tri = tris[t];
-        folded = !(cross2(node[tri[1]] - node[tri[0]], node[tri[2]] - node[tri[0]]) > 0);
-      }
-      if (folded || !turned(x).empty()) continue;
-      E = energy_and_gradient(setup, x, s, frame_normals, nullptr);
-      found = E < result.energy_before;
-    }
-    if (!found) {
-      for (Index i = 0; i < m; ++i) {
-        const Index v = setup.movable[i];
-        result.uv[i] = chart.uv[v];
-        const Index t = chart.corner_triangles[chart.corner_start[v]];
-        result.where[i] = ChartPoint{t, {0, 0, 0}};
-        for (int k = 0; k < 3; ++k) result.where[i].weight[k] = tris[t][k] == v ? 1.0 : 0.0;
-        x[v] = frame[v];
-      }
-      E = result.energy_before;
-      result.stop = "no descent";
-    }
+  // The ARAP energy cannot rise: each round starts where the last ended, with the rotations that
+  // minimise it there, and only lowers it. Round-off aside; a frame whose relaxation gained
+  // nothing comes back unchanged.
+  result.energy_after = arap_energy(setup, x, s, frame_normals);
+  if (!(result.energy_after <= result.energy_before)) {
+    for (Index i = 0; i < m; ++i) at_start(i);
+    result.energy_after = result.energy_before;
+    result.stop = "no descent";
+    return result;
   }
-  if (std::getenv("SKINSLIDE_DEBUG_EDGES")) {
-    int on_edge = 0, on_vertex_count = 0;
-    for (Index i = 0; i < m; ++i) {
-      int zeros = 0;
-      for (double w : result.where[i].weight) zeros += w < 1e-9;
-      on_edge += zeros == 1;
-      on_vertex_count += zeros == 2;
-    }
-    std::fprintf(stderr, "m %d on edge %d on vertex %d E %.6g\n", m, on_edge, on_vertex_count, E);
-  }
-  result.energy_after = E;
   for (Index i = 0; i < m; ++i) {
     result.position[i] = x[setup.movable[i]];
     if (!result.position[i].allFinite())

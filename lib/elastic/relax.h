@@ -1,6 +1,7 @@
 // The elastic slide of one patch in one frame: the free vertices move in the patch's fixed chart,
 // starting exactly at the frame, and lower an as-rigid-as-possible energy against the bind's
 // triangles with fold-free, energy-decreasing steps (README "The method, exactly", elastic).
+// ARAP: Sorkine & Alexa 2007; flip-free step bound: Smith & Schaefer 2015.
 #pragma once
 
 #include <string>
@@ -13,9 +14,13 @@ namespace skinslide {
 
 /// When a frame's relaxation stops (README "Options").
 struct ElasticOptions {
-  int max_iterations = 100;  ///< outer (Gauss-Newton) iterations at most
-  /// Stop once two iterations in a row each lower the energy by less than this fraction of the
-  /// frame's starting energy.
+  /// ARAP local/global rounds: each fits every triangle's rotation to the slid patch, then
+  /// lowers the energy with them held. More rounds reach lower ARAP energies; fewer keep the
+  /// slide smoother from frame to frame (README "Choosing the defaults").
+  int rotation_fits = 3;
+  int max_iterations = 100;  ///< Gauss-Newton steps per round at most
+  /// A round stops once two steps in a row each lower its energy by less than this fraction of
+  /// the energy it started with.
   double tolerance = 1e-6;
 };
 
@@ -51,12 +56,15 @@ struct ElasticResult {
   Positions2 uv;
   std::vector<ChartPoint> where;
   Positions3 position;        ///< the slid 3D position: on `where`'s frame triangle
-  double energy_before = 0;   ///< the frame's energy (weighted sum of squared stretches)
-  double energy_after = 0;    ///< never above energy_before
+  double energy_before = 0;   ///< the frame's ARAP energy against the bind
+  double energy_after = 0;    ///< the slid patch's, never above energy_before
   double scale = 1;           ///< s: sqrt(frame area / bind area), the stretch aimed at
-  int iterations = 0;         ///< steps taken
+  int iterations = 0;         ///< steps taken, over all rounds
   int held = 0;               ///< vertex-steps held in place to keep a step a descent (total)
-  std::string stop;           ///< why it stopped: "at rest", "converged", "no descent", "limit"
+  /// Why it stopped: "at rest" (the frame is the bind up to a rigid motion and a uniform scale),
+  /// "converged", "limit" (a round took max_iterations steps), "no descent" (round-off ate the
+  /// gain: the frame is returned).
+  std::string stop;
 };
 
 /// Relaxes one patch in one frame. `frame_points` holds the frame's positions of the patch's
@@ -68,8 +76,9 @@ struct ElasticResult {
 ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame_points,
                           const ElasticOptions& options);
 
-/// The energy of a whole patch at positions `x` (local ids) with target stretch `scale`.
-double elastic_energy(const ElasticSetup& setup, const std::vector<Triangle>& triangles,
-                      const Positions3& x, double scale);
+/// The ARAP energy of a whole patch at positions `x` (local ids) with target stretch `scale`:
+/// the mean bind triangle area times the sum over triangles of (s1 - scale)^2 + (s2 - scale)^2,
+/// s1, s2 the singular values of the triangle's deformation gradient from the bind.
+double elastic_energy(const ElasticSetup& setup, const Positions3& x, double scale);
 
 }  // namespace skinslide

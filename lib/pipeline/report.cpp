@@ -110,6 +110,7 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
     root.add("options",
              Object(2)
                  .add("method", quoted(to_string(o.method)))
+                 .add("rotation_fits", number(static_cast<long long>(o.elastic.rotation_fits)))
                  .add("max_iterations", number(static_cast<long long>(o.elastic.max_iterations)))
                  .add("tolerance", number(o.elastic.tolerance))
                  .str());
