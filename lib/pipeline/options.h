@@ -7,6 +7,7 @@
 
 #include "core/types.h"
 #include "elastic/relax.h"
+#include "unwrap/force_density.h"
 
 namespace skinslide {
 
@@ -15,13 +16,6 @@ namespace skinslide {
 enum class SlideMethod {
   Elastic,  ///< the default: the free vertices relax in a fixed chart of the patch
   Paper,    ///< Yang & Zhang 2010: bind and frame flattened by bar nets, bind points located
-};
-
-/// How a bar's force density q follows its length L (Lmin, Lmax per patch).
-enum class Density {
-  Paper,    ///< q = max(1 - L/Lmax, q_floor): Yang & Zhang 2010, equation (2)
-  Inverse,  ///< q = max(Lmin/L, q_floor): long bars soft (also spelled `length`: q ~ 1/L)
-  Uniform,  ///< q = 1: Tutte's barycentric embedding
 };
 
 /// What the non-outer boundary loops (holes) do in the bind net.

@@ -5,9 +5,15 @@
 #include <vector>
 
 #include "core/types.h"
-#include "pipeline/options.h"
 
 namespace skinslide {
+
+/// How a bar's force density q follows its length L (Lmin, Lmax per patch).
+enum class Density {
+  Paper,    ///< q = max(1 - L/Lmax, q_floor): Yang & Zhang 2010, equation (2)
+  Inverse,  ///< q = max(Lmin/L, q_floor): long bars soft (also spelled `length`: q ~ 1/L)
+  Uniform,  ///< q = 1: Tutte's barycentric embedding
+};
 
 /// 3D length of each bar. `points`: positions indexed by the bars' node ids.
 std::vector<double> bar_lengths(const Positions3& points,
