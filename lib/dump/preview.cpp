@@ -95,7 +95,8 @@ class Canvas {
 
 RgbImage preview_image(const Positions2& bind_net, const Positions2& frame_net,
                        const std::vector<std::array<Index, 2>>& bars,
-                       const std::vector<Index>& moved, int size, const PreviewColors& colors) {
+                       const std::vector<Index>& moved, int size, const PreviewColors& colors,
+                       bool slides_to_frame_net) {
   SKINSLIDE_CHECK(size >= 16, "preview size");
   SKINSLIDE_CHECK(frame_net.size() == bind_net.size(), "bind and frame nets differ in size");
   auto valid = [&](Index v) { return v >= 0 && static_cast<size_t>(v) < bind_net.size(); };
@@ -112,7 +113,7 @@ RgbImage preview_image(const Positions2& bind_net, const Positions2& frame_net,
   for (Index v : moved) {
     SKINSLIDE_CHECK(valid(v), "moved vertex index");
     canvas.line(frame_net[v], bind_net[v], colors.moved);
-    canvas.dot(bind_net[v], radius, colors.moved);
+    canvas.dot(slides_to_frame_net ? frame_net[v] : bind_net[v], radius, colors.moved);
   }
   return canvas.image();
 }

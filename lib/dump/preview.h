@@ -29,13 +29,16 @@ struct PreviewColors {
 /// Draws, on a size x size image with v up (v = 1 at the top row) and a margin of size/32
 /// pixels around the unit square: the square's outline, the bind net's `bars`, the frame net's
 /// `bars` over them, and for every vertex in `moved` a segment from its frame-net position to its
-/// bind-net position (where it slides to in the frame's net) ending in a dot. Lines are about one
+/// bind-net position (where it slides to in the frame's net) ending in a dot. With
+/// `slides_to_frame_net` (the elastic method: `bind_net` is the patch's chart, `frame_net` where
+/// the vertices slid to in it) the segments run the other way and the dots mark `frame_net`. Lines are about one
 /// pixel wide, anti-aliased by distance; the image depends only on the inputs.
 /// \param bind_net, frame_net 2D position of every net vertex (#n each); `bars` and `moved`
 ///        index them (local ids). Points outside the unit square are drawn while in the margin.
 /// \pre size >= 16
 RgbImage preview_image(const Positions2& bind_net, const Positions2& frame_net,
                        const std::vector<std::array<Index, 2>>& bars,
-                       const std::vector<Index>& moved, int size, const PreviewColors& colors = {});
+                       const std::vector<Index>& moved, int size, const PreviewColors& colors = {},
+                       bool slides_to_frame_net = false);
 
 }  // namespace skinslide

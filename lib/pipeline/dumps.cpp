@@ -31,6 +31,8 @@ void describe(ExrImage& image, const std::string& source, const PatchNet& patch,
                              {"skinslide.net", net},
                              {"skinslide.image", kind}};
   image.int_attributes = {{"skinslide.patch", index}, {"skinslide.resolution", image.width}};
+  image.string_attributes.push_back({"skinslide.method", patch.elastic ? "elastic" : "paper"});
+  if (patch.elastic) return;  // the chart is a disk: no corners
   static const char* const kCornerNames[4] = {"skinslide.corner00", "skinslide.corner10",
                                               "skinslide.corner11", "skinslide.corner01"};
   for (int k = 0; k < 4; ++k)
@@ -143,8 +145,10 @@ void write_frame_dumps(const std::string& dump_dir, const std::string& frame_pat
                     "frame dumps need the ID image: slide_frame(..., {.id_image = true})");
     write_id(dump_path(dump_dir, stem, index, "id.exr"), report.id_image, frame_path, patch, index,
              "frame");
-    const GeometryImage geometry = geometry_image(report.frame_net, patch.triangles,
-                                                  local_points(patch, frame_positions), size);
+    // The paper's frame has a net of its own; the elastic method's frame lies over the chart.
+    const Positions2& frame_net = patch.elastic ? patch.bind_net : report.frame_net;
+    const GeometryImage geometry =
+        geometry_image(frame_net, patch.triangles, local_points(patch, frame_positions), size);
     const SlideField slide = slide_field(patch.bind_net, report.frame_net, patch.triangles, size);
     write_geometry(dump_path(dump_dir, stem, index, "geom.exr"), geometry, &slide, frame_path,
                    patch, index, "frame");
@@ -161,8 +165,9 @@ void write_previews(const std::string& preview_dir, const std::string& frame_pat
     const PatchNet& patch = setup.patches[k];
     const PatchFrameReport& report = reports[k];
     if (!has_net(patch) || report.frame_net.size() != patch.bind_net.size()) continue;
-    const RgbImage image = preview_image(patch.bind_net, report.frame_net, patch.bars,
-                                         patch.free_vertices, options.preview_size);
+    const RgbImage image =
+        preview_image(patch.bind_net, report.frame_net, patch.bars, patch.free_vertices,
+                      options.preview_size, PreviewColors{}, patch.elastic != nullptr);
     write_png(dump_path(preview_dir, stem, static_cast<int>(k), "png"), image.width, image.height,
               image.rgb);
   }

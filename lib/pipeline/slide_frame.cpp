@@ -105,7 +105,9 @@ PatchFrameReport slide_patch_elastic(const BindSetup& setup, const PatchNet& pat
     report.spread_frame = edge_log_spread(patch, points);
     report.spread_slid = edge_log_spread(patch, output);
   }
-  if (extras.id_image) report.id_image = id_raster(report.frame_net, patch.triangles, setup.options.lookup_size);
+  // The elastic frame is looked up in the fixed chart: its ID image is the chart's.
+  if (extras.id_image)
+    report.id_image = id_raster(patch.bind_net, patch.triangles, setup.options.lookup_size);
   report.transfer_seconds = seconds_since(t0);
   return report;
 }

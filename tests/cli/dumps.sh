@@ -33,7 +33,7 @@ check "the slid frames do not depend on --dump" bash -c \
    -o '$tmp/plain' && diff -r '$tmp/plain' '$tmp/t1/slid'"
 check "exrheader reads the ID image" lists "$tmp/t1/dump/elbow.0003.patch000.id.exr" \
   "id, 32-bit unsigned integer" "(0 0) - (255 255)" 'skinslide.image (type string): "id"' \
-  'skinslide.source (type string): "data/elbow/frames/elbow.0003.obj"' "skinslide.corner11"
+  'skinslide.source (type string): "data/elbow/frames/elbow.0003.obj"' 'skinslide.method (type string): "elastic"'
 check "exrheader reads the frame's geometry image" lists \
   "$tmp/t1/dump/elbow.0003.patch000.geom.exr" "A, 32-bit floating-point" \
   "P.X, 32-bit floating-point" "P.Y, 32-bit floating-point" "P.Z, 32-bit floating-point" \
