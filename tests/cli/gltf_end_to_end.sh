@@ -6,8 +6,8 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/gltf_end_to_end.sh
 set -u
 source "$(dirname "$0")/harness.sh"
-shared=${SKINSLIDE_SHARED_DIR:-$root/../shared}
 simple="$shared/data/gltf/RiggedSimple.glb"
+require_shared "$simple"  # every check below reads it
 patch="$here/gltf/RiggedSimple_bend.txt"
 
 refused() {  # refused CODE OUTDIR ARGS...: expect_exit, and no output folder

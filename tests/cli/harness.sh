@@ -1,5 +1,6 @@
 # The shared frame of the end-to-end scripts, sourced by each: paths, a scratch folder removed on
-# exit, `check NAME COMMAND...` (counts a pass when COMMAND succeeds) and `finish NAME`.
+# exit, `check NAME COMMAND...` (counts a pass when COMMAND succeeds), `require_shared FILE...`
+# (skips the script when ../shared lacks a file) and `finish NAME`.
 here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
@@ -7,6 +8,22 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 passed=0
 failed=0
+# The real test data checked out beside the repository (a clone elsewhere has none).
+shared=${SKINSLIDE_SHARED_DIR:-$(cd "$root/.." && pwd)/shared}
+
+require_shared() {  # require_shared FILE...: ends the script when a file is missing, naming it:
+  # exit 77 (ctest: skipped), or 1 (failed) when SKINSLIDE_REQUIRE_SHARED=1 (CI has ../shared)
+  local f
+  for f in "$@"; do
+    [ -e "$f" ] && continue
+    if [ "${SKINSLIDE_REQUIRE_SHARED:-}" = 1 ]; then
+      echo "FAIL: missing $f (SKINSLIDE_REQUIRE_SHARED=1)" >&2
+      exit 1
+    fi
+    echo "SKIP: missing $f"
+    exit 77
+  done
+}
 
 check() {  # check NAME COMMAND...
   local name=$1

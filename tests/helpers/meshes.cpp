@@ -1,5 +1,7 @@
 #include "helpers/meshes.h"
 
+#include "helpers/shared_data.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -61,7 +63,7 @@ std::string source_path(const std::string& relative) {
 }
 
 std::string shared_path(const std::string& relative) {
-  return std::string(SKINSLIDE_SHARED_DIR) + "/" + relative;
+  return shared_dir() + "/" + relative;
 }
 
 }  // namespace skinslide::test

@@ -24,7 +24,7 @@ std::vector<Index> all_faces(const PolyMesh& mesh);
 /// A fresh empty folder under the test temp dir.
 std::string temp_dir(const std::string& name);
 
-/// Path of a file in the repository or in ../shared.
+/// Path of a file in the repository or in the shared folder (helpers/shared_data.h).
 std::string source_path(const std::string& relative);
 std::string shared_path(const std::string& relative);
 

@@ -184,6 +184,7 @@ struct Reference {
 };
 
 TEST(GltfRig, PosingAgreesWithAnIndependentEvaluationOnAllFourCharacters) {
+  SKINSLIDE_REQUIRE_GLTF("CesiumMan.glb", "Fox.glb", "RiggedFigure.glb", "RiggedSimple.glb");
   for (const char* name : {"RiggedSimple.glb", "RiggedFigure.glb", "CesiumMan.glb", "Fox.glb"}) {
     SCOPED_TRACE(name);
     Reference ref;
@@ -217,6 +218,7 @@ TEST(GltfRig, PosingAgreesWithAnIndependentEvaluationOnAllFourCharacters) {
 }
 
 TEST(GltfRig, RestSkinningIsTheStoredMeshUnderARigidMap) {
+  SKINSLIDE_REQUIRE_GLTF("CesiumMan.glb", "Fox.glb", "RiggedFigure.glb", "RiggedSimple.glb");
   // The bind is POSITION as stored. At the nodes' stored transforms skinning gives it back up to
   // a rigid change of axes (Z_UP and Armature matrices): checked through edge lengths.
   for (const char* name : {"RiggedSimple.glb", "RiggedFigure.glb", "CesiumMan.glb", "Fox.glb"}) {
@@ -237,6 +239,7 @@ TEST(GltfRig, RestSkinningIsTheStoredMeshUnderARigidMap) {
 }
 
 TEST(GltfRig, ReadsTheDocumentedSkeletonsAndClips) {
+  SKINSLIDE_REQUIRE_GLTF("Fox.glb");
   const MeshFile fox = read_gltf_file(shared_gltf("Fox.glb"), {});
   const Rig rig = gltf_rig(*fox.gltf, fox.path);
   EXPECT_EQ(rig.skin.joints.size(), 24u);
@@ -259,6 +262,7 @@ TEST(GltfRig, ReadsTheDocumentedSkeletonsAndClips) {
 }
 
 TEST(RigFrames, FramesAreStaticPosedCopiesThatValidate) {
+  SKINSLIDE_REQUIRE_GLTF("RiggedSimple.glb");
   const fs::path dir = temp_dir();
   const MeshFile character = read_gltf_file(shared_gltf("RiggedSimple.glb"), {});
   const RigClip clip = rig_clip(character, {});
@@ -291,6 +295,7 @@ TEST(RigFrames, FramesAreStaticPosedCopiesThatValidate) {
 }
 
 TEST(RigFrames, FpsSamplingAndUnskinnedFilesAreRefusedClearly) {
+  SKINSLIDE_REQUIRE_GLTF("Fox.glb");
   const MeshFile character = read_gltf_file(shared_gltf("Fox.glb"), {});
   RigOptions o;
   o.animation = "Walk";

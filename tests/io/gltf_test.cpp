@@ -39,6 +39,7 @@ const Character kCharacters[] = {
 };
 
 TEST(GltfRead, SharedCharactersHaveTheDocumentedCounts) {
+  SKINSLIDE_REQUIRE_GLTF("CesiumMan.glb", "Fox.glb", "RiggedFigure.glb", "RiggedSimple.glb");
   for (const Character& c : kCharacters) {
     SCOPED_TRACE(c.file);
     const MeshFile f = read_gltf_file(shared_gltf(c.file), {});
@@ -67,6 +68,7 @@ TEST(GltfRead, SharedCharactersHaveTheDocumentedCounts) {
 }
 
 TEST(GltfRead, NonIndexedFoxTakesVerticesThreeByThree) {
+  SKINSLIDE_REQUIRE_GLTF("Fox.glb");
   const MeshFile f = read_gltf_file(shared_gltf("Fox.glb"), {});
   for (Index t = 0; t < f.mesh.face_count(); ++t)
     for (int k = 0; k < 3; ++k) ASSERT_EQ(f.gltf->triangle_raw[t][k], 3 * t + k);
@@ -294,6 +296,7 @@ TEST(GltfRead, RejectsWhatItCannotHonour) {
 }
 
 TEST(GltfRead, TruncatedGlbIsAnInputErrorAtEveryLength) {
+  SKINSLIDE_REQUIRE_GLTF("RiggedSimple.glb");
   const std::string bytes = read_file(shared_gltf("RiggedSimple.glb"));
   const fs::path dir = temp_dir();
   const std::string path = (dir / "cut.glb").string();
@@ -315,6 +318,7 @@ TEST(GltfRead, TruncatedGlbIsAnInputErrorAtEveryLength) {
 // Writing.
 
 TEST(GltfWrite, RoundTripOfEachCharacterIsTheSameDocument) {
+  SKINSLIDE_REQUIRE_GLTF("CesiumMan.glb", "Fox.glb", "RiggedFigure.glb", "RiggedSimple.glb");
   const fs::path dir = temp_dir();
   std::vector<std::string> written;
   for (const Character& c : kCharacters) {
@@ -414,6 +418,7 @@ TEST(GltfWrite, SlidVertexMovesEveryRawCopyAndGetsInterpolatedNormals) {
 }
 
 TEST(GltfWrite, OnlyTheMovedVerticesBytesChangeInACharacter) {
+  SKINSLIDE_REQUIRE_GLTF("RiggedSimple.glb");
   const fs::path dir = temp_dir();
   const MeshFile f = read_gltf_file(shared_gltf("RiggedSimple.glb"), {});
   // Move welded vertex 40 to the centroid of a triangle that uses it.
@@ -463,6 +468,7 @@ TEST(GltfWrite, OnlyTheMovedVerticesBytesChangeInACharacter) {
 }
 
 TEST(GltfWrite, UnwritableTargetIsAnOutputErrorAndLeavesNoFile) {
+  SKINSLIDE_REQUIRE_GLTF("RiggedSimple.glb");
   const fs::path dir = temp_dir();
   const MeshFile f = read_gltf_file(shared_gltf("RiggedSimple.glb"), {});
   try {

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "helpers/shared_data.h"
+
 namespace skinslide::testing {
 
 /// Standard base64 (with padding), for data-URI buffers written by the tests.
@@ -29,9 +31,21 @@ inline std::string base64(const std::vector<unsigned char>& d) {
   return s;
 }
 
+/// ../shared/data/gltf/NAME; a test reading it starts with SKINSLIDE_REQUIRE_GLTF(NAME, ...).
 inline std::string shared_gltf(const std::string& name) {
-  return std::string(SKINSLIDE_SHARED_DIR) + "/data/gltf/" + name;
+  return ::skinslide::test::shared_dir() + "/data/gltf/" + name;
 }
+
+inline std::vector<std::string> shared_gltf_relatives(const std::vector<std::string>& names) {
+  std::vector<std::string> r;
+  for (const std::string& n : names) r.push_back("data/gltf/" + n);
+  return r;
+}
+
+/// SKINSLIDE_REQUIRE_GLTF("Fox.glb", ...): SKINSLIDE_REQUIRE_SHARED for files of data/gltf.
+#define SKINSLIDE_REQUIRE_GLTF(...) \
+  SKINSLIDE_SKIP_IF_MISSING_(::skinslide::test::missing_shared( \
+      ::skinslide::testing::shared_gltf_relatives({__VA_ARGS__})))
 
 /// A fresh, empty folder under the system's temp folder, named after the running test and the
 /// process (two test runs on one machine must not share, and delete, each other's files).

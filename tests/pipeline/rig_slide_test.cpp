@@ -79,6 +79,7 @@ class RigSlide : public ::testing::TestWithParam<CharacterCase> {};
 
 TEST_P(RigSlide, EveryFrameKeepsTheBorderStaysOnTheSurfaceAndEvensTheStretch) {
   const CharacterCase& c = GetParam();
+  SKINSLIDE_REQUIRE_GLTF(c.file);
   const MeshFile character = read_gltf_file(testing::shared_gltf(c.file), {});
   RigOptions ro;
   ro.animation = c.animation;
