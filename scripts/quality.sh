@@ -2,7 +2,8 @@
 # Quality benchmark: how well each slide method restores the bind's edge lengths on real meshes,
 # and what it costs in flipped triangles, surface error, border motion and popping.
 #
-# Usage: scripts/quality.sh [--cases a,b,...] [--methods unslid,paper,elastic[,prototype]] [--keep DIR]
+# Usage: scripts/quality.sh [--cases a,b,...] [--methods unslid,paper,elastic[,prototype][,corrective-smooth]]
+#                           [--keep DIR]
 #
 #   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
 #   --methods  default: unslid,paper,elastic
@@ -10,6 +11,14 @@
 #              paper     skinslide --method paper (a binary without --method: its default)
 #              elastic   skinslide --method elastic ("n/a" when the binary has no such method)
 #              prototype /work/shared/reference/elastic_slide.py (slow; a yardstick, not default)
+#              corrective-smooth
+#                        the peer a pipeline would use instead: Blender's Corrective Smooth
+#                        modifier (delta mush), 10 iterations, rest = the bind, restricted to the
+#                        patch's free vertices by a vertex group (scripts/corrective_smooth.py has
+#                        the exact set-up). One headless Blender per case for all its frames.
+#                        Needs `blender` (Debian's 3.4.1: installed with apt-get when missing and
+#                        this method is asked for). A benchmark peer only, never a dependency.
+#                        s/frame includes Blender's start and mesh build (about 1-2 s a case).
 #   --keep DIR keep the work files (inputs, patches, slid frames, per-frame JSON) in DIR;
 #              default: a temporary folder, removed at the end
 # Environment: SKINSLIDE=path/to/binary skips the build (else scripts/build.sh builds build/);
@@ -84,7 +93,7 @@ while [[ $# -gt 0 ]]; do
         --methods=*) methods=${1#*=}; shift ;;
         --keep) keep=$2; shift 2 ;;
         --keep=*) keep=${1#*=}; shift ;;
-        -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,/^set -E/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
         *) echo "quality.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -95,7 +104,7 @@ for c in "${case_list[@]}"; do
         *) echo "quality.sh: unknown case $c" >&2; exit 2 ;; esac
 done
 for m in "${method_list[@]}"; do
-    case $m in unslid|paper|elastic|prototype) ;;
+    case $m in unslid|paper|elastic|prototype|corrective-smooth) ;;
         *) echo "quality.sh: unknown method $m" >&2; exit 2 ;; esac
 done
 
@@ -125,6 +134,18 @@ if grep -q -- '--method' <<<"$help_text"; then
     grep -q 'elastic' <<<"$help_text" && has_elastic=1
 fi
 
+# Blender for the corrective-smooth method: installed only when that method is asked for.
+BLENDER=${BLENDER:-blender}
+if [[ ,$methods, == *,corrective-smooth,* ]] && ! command -v "$BLENDER" >/dev/null; then
+    echo "quality.sh: corrective-smooth needs Blender: apt-get install -y blender (large)" >&2
+    if ! { apt-get install -y blender || { apt-get update && apt-get install -y blender; }; } \
+        >"$work/apt-blender.log" 2>&1; then
+        tail -n 20 "$work/apt-blender.log" >&2
+        echo "quality.sh: could not install blender" >&2
+        exit 1
+    fi
+fi
+
 now() { date +%s.%N; }
 elapsed() { "$PY" -c "import sys; print(float(sys.argv[2]) - float(sys.argv[1]))" "$1" "$2"; }
 
@@ -136,6 +157,20 @@ method_args() {
         elastic) [[ $has_elastic == 1 ]] || return 1; margs=(--method elastic); return 0 ;;
     esac
     return 1
+}
+
+# run_cs CASE BIND PATCH FRAMES_DIR OUT_DIR: Corrective Smooth on every frame, one Blender run
+run_cs() {
+    local log=$work/$1/corrective-smooth.log
+    mkdir -p "$5" "$work/$1"
+    if ! "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 \
+        --python "$root/scripts/corrective_smooth.py" -- slide --bind "$2" --patch "$3" \
+        -o "$5" "$4"/*.obj >"$log" 2>&1; then
+        tail -n 20 "$log" >&2
+        echo "quality.sh: $1: Blender's Corrective Smooth failed (log: $log)" >&2
+        return 1
+    fi
+    notes+=("$1: corrective-smooth: $(grep -m1 '^corrective_smooth: ' "$log" | sed 's/^corrective_smooth: //')")
 }
 
 na_row() { echo "| $1 | $2 | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a |"; }
@@ -163,6 +198,11 @@ run_obj_case() {
                 mkdir -p "$dir"
                 t0=$(now)
                 "$PY" "$REFDIR/elastic_slide.py" "$bind" "$patch" "${flist[@]}" -o "$dir"
+                t1=$(now)
+                measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" 0 "$(elapsed "$t0" "$t1")" ;;
+            corrective-smooth)
+                t0=$(now)
+                run_cs "$c" "$bind" "$patch" "$frames" "$dir"
                 t1=$(now)
                 measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" 0 "$(elapsed "$t0" "$t1")" ;;
             *)
@@ -208,6 +248,11 @@ run_gltf_case() {
                 "$PY" "$REFDIR/elastic_slide.py" "$w/bind.obj" "$w/patch.txt" "${flist[@]}" -o "$dir"
                 t1=$(now)
                 measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" 1 "$(elapsed "$t0" "$t1")" ;;
+            corrective-smooth)
+                t0=$(now)
+                run_cs "$c" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir"
+                t1=$(now)
+                measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" 1 "$(elapsed "$t0" "$t1")" ;;
             *)
                 if ! method_args "$m"; then na_row "$c" "$m"; continue; fi
                 t0=$(now)
@@ -236,6 +281,9 @@ echo "binary: $SKINSLIDE ($("$SKINSLIDE" --version 2>/dev/null || echo '?'))," \
      "$(if [[ $has_method == 1 ]]; then echo "--method available (elastic: $([[ $has_elastic == 1 ]] && echo yes || echo no))";
         else echo "no --method option: paper = the binary's default, elastic = n/a"; fi)"
 echo "git: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?')"
+if [[ ,$methods, == *,corrective-smooth,* ]]; then
+    echo "corrective-smooth: $("$BLENDER" -b --factory-startup --version 2>/dev/null | grep -m1 '^Blender' || echo 'Blender ?') ($(command -v "$BLENDER"))"
+fi
 echo
 "$PY" "$Q" header
 
