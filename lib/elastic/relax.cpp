@@ -296,14 +296,21 @@ class StepSystem {
         for (Index e = setup_.metric_start[j]; e < setup_.metric_start[j + 1]; ++e)
           for (int a = 0; a < 2; ++a, ++k)
             if (setup_.metric_column[e] == j && a == b) value[k] += mu;
-    solver_.factorize(H_);
-    if (solver_.info() != Eigen::Success) return false;
     Eigen::VectorXd rhs(2 * m);
     for (Index i = 0; i < m; ++i) {
       const Vec2 r = held[i] ? Vec2::Zero() : Vec2(-(T[i].transpose() * gradient[setup_.movable[i]]));
       rhs.segment<2>(2 * i) = r;
     }
-    const Eigen::VectorXd x = solver_.solve(rhs);
+    Eigen::VectorXd x;
+    if (!(factored_ && !stale_ && preconditioned(rhs, x))) {
+      solver_.factorize(H_);
+      if (solver_.info() != Eigen::Success) return false;
+      factored_ = true;
+      stale_ = false;
+      ++factorizations;
+      x = solver_.solve(rhs);
+    }
+
     if (!x.allFinite()) return false;
     d.resize(m);
     for (Index i = 0; i < m; ++i) d[i] = held[i] ? Vec2::Zero() : Vec2(x.segment<2>(2 * i));
@@ -311,9 +318,50 @@ class StepSystem {
   }
 
  private:
+  // Conjugate gradients on H with the last factor as preconditioner: H changes little from one
+  // step to the next (only where vertices change triangles or are held), so a factor serves
+  // several steps. When it needs many iterations, the next solve factorises afresh; false when it
+  // does not converge.
+  bool preconditioned(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    const double target = kStepTolerance * b.norm();
+    x = Eigen::VectorXd::Zero(b.size());
+    if (!(target > 0)) return true;
+    Eigen::VectorXd r = b;
+    Eigen::VectorXd z = solver_.solve(r);
+    Eigen::VectorXd p = z;
+    double rz = r.dot(z);
+    for (int k = 0; k < kMaxPreconditionedIterations; ++k) {
+      const Eigen::VectorXd Hp = H_ * p;
+      const double pHp = p.dot(Hp);
+      if (!(pHp > 0) || !(rz > 0)) return false;
+      const double alpha = rz / pHp;
+      x += alpha * p;
+      r -= alpha * Hp;
+      if (r.norm() <= target) {
+        stale_ = k >= kRefactorAfter;
+        return true;
+      }
+      z = solver_.solve(r);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return false;
+  }
+
+ public:
+  int factorizations = 0;
+
+ private:
+  // An inexact Newton step: the line search measures the true energy.
+  static constexpr double kStepTolerance = 1e-4;
+  static constexpr int kMaxPreconditionedIterations = 30;
+  static constexpr int kRefactorAfter = 10;
   const ElasticSetup& setup_;
   SparseMatrix H_;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver_;
+  bool factored_ = false;
+  bool stale_ = false;
 };
 
 }  // namespace
