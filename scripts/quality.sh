@@ -6,7 +6,7 @@
 #                           [--keep DIR]
 #
 #   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
-#   --methods  default: unslid,paper,elastic
+#   --methods  default: unslid,paper,elastic,corrective-smooth
 #              unslid    the frames as they are (the baseline; same measuring code path)
 #              paper     skinslide --method paper (a binary without --method: its default)
 #              elastic   skinslide --method elastic ("n/a" when the binary has no such method)
@@ -17,12 +17,15 @@
 #                        patch's free vertices by a vertex group (scripts/corrective_smooth.py has
 #                        the exact set-up). One headless Blender per case for all its frames.
 #                        Needs `blender` (Debian's 3.4.1: installed with apt-get when missing and
-#                        this method is asked for). A benchmark peer only, never a dependency.
-#                        s/frame includes Blender's start and mesh build (about 1-2 s a case).
+#                        this method is asked for; when that fails and the method was not named
+#                        in --methods, its rows say n/a). A benchmark peer only, never a
+#                        dependency. s/frame includes Blender's start and mesh build (about 1-2 s
+#                        a case); the method adds about 30-60 s to a full run.
 #   --keep DIR keep the work files (inputs, patches, slid frames, per-frame JSON) in DIR;
 #              default: a temporary folder, removed at the end
 # Environment: SKINSLIDE=path/to/binary skips the build (else scripts/build.sh builds build/);
-#   QUALITY_DATA (default /work/shared/data), QUALITY_REFERENCE (default /work/shared/reference).
+#   QUALITY_DATA (default /work/shared/data), QUALITY_REFERENCE (default /work/shared/reference),
+#   BLENDER (default: blender on the PATH).
 # Needs /usr/bin/python3 with numpy and scipy (apt-get install -y python3-numpy python3-scipy).
 # Exits non-zero as soon as a command fails.
 #
@@ -71,7 +74,7 @@
 #                  |S[t+1]-2S[t]+S[t-1]|, over the same mean for the unslid frames F
 #   pop p99        99th percentile over patch vertices and interior times of |D''|, D = S - F
 #                  (the slide itself), over mean |F''|
-#   s/frame        wall clock of the skinslide (or prototype) command / frames; informational
+#   s/frame        wall clock of the skinslide (prototype, Blender) command / frames; informational
 set -Eeuo pipefail
 trap 'echo "quality.sh: failed (exit $?): $BASH_COMMAND" >&2' ERR
 
@@ -83,14 +86,15 @@ REFDIR=${QUALITY_REFERENCE:-/work/shared/reference}
 export QUALITY_REFERENCE=$REFDIR
 
 cases=ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
-methods=unslid,paper,elastic
+methods=unslid,paper,elastic,corrective-smooth
+methods_given=0
 keep=
 while [[ $# -gt 0 ]]; do
     case $1 in
         --cases) cases=$2; shift 2 ;;
         --cases=*) cases=${1#*=}; shift ;;
-        --methods) methods=$2; shift 2 ;;
-        --methods=*) methods=${1#*=}; shift ;;
+        --methods) methods=$2; methods_given=1; shift 2 ;;
+        --methods=*) methods=${1#*=}; methods_given=1; shift ;;
         --keep) keep=$2; shift 2 ;;
         --keep=*) keep=${1#*=}; shift ;;
         -h|--help) sed -n '2,/^set -E/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
@@ -136,13 +140,18 @@ fi
 
 # Blender for the corrective-smooth method: installed only when that method is asked for.
 BLENDER=${BLENDER:-blender}
+has_blender=1
 if [[ ,$methods, == *,corrective-smooth,* ]] && ! command -v "$BLENDER" >/dev/null; then
     echo "quality.sh: corrective-smooth needs Blender: apt-get install -y blender (large)" >&2
     if ! { apt-get install -y blender || { apt-get update && apt-get install -y blender; }; } \
-        >"$work/apt-blender.log" 2>&1; then
+        >"$work/apt-blender.log" 2>&1 || ! command -v "$BLENDER" >/dev/null; then
         tail -n 20 "$work/apt-blender.log" >&2
-        echo "quality.sh: could not install blender" >&2
-        exit 1
+        if [[ $methods_given == 1 ]]; then
+            echo "quality.sh: could not install blender" >&2
+            exit 1
+        fi
+        echo "quality.sh: could not install blender: corrective-smooth rows are n/a" >&2
+        has_blender=0
     fi
 fi
 
@@ -161,6 +170,7 @@ method_args() {
 
 # run_cs CASE BIND PATCH FRAMES_DIR OUT_DIR: Corrective Smooth on every frame, one Blender run
 run_cs() {
+    [[ $has_blender == 1 ]] || return 1
     local log=$work/$1/corrective-smooth.log
     mkdir -p "$5" "$work/$1"
     if ! "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 \
@@ -201,6 +211,7 @@ run_obj_case() {
                 t1=$(now)
                 measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" 0 "$(elapsed "$t0" "$t1")" ;;
             corrective-smooth)
+                [[ $has_blender == 1 ]] || { na_row "$c" "$m"; continue; }
                 t0=$(now)
                 run_cs "$c" "$bind" "$patch" "$frames" "$dir"
                 t1=$(now)
@@ -249,6 +260,7 @@ run_gltf_case() {
                 t1=$(now)
                 measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" 1 "$(elapsed "$t0" "$t1")" ;;
             corrective-smooth)
+                [[ $has_blender == 1 ]] || { na_row "$c" "$m"; continue; }
                 t0=$(now)
                 run_cs "$c" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir"
                 t1=$(now)
@@ -281,7 +293,7 @@ echo "binary: $SKINSLIDE ($("$SKINSLIDE" --version 2>/dev/null || echo '?'))," \
      "$(if [[ $has_method == 1 ]]; then echo "--method available (elastic: $([[ $has_elastic == 1 ]] && echo yes || echo no))";
         else echo "no --method option: paper = the binary's default, elastic = n/a"; fi)"
 echo "git: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?')"
-if [[ ,$methods, == *,corrective-smooth,* ]]; then
+if [[ ,$methods, == *,corrective-smooth,* && $has_blender == 1 ]]; then
     echo "corrective-smooth: $("$BLENDER" -b --factory-startup --version 2>/dev/null | grep -m1 '^Blender' || echo 'Blender ?') ($(command -v "$BLENDER"))"
 fi
 echo
