@@ -495,6 +495,50 @@ void write_model(tinygltf::Model model, const std::string& source_path,
   write_file_atomic(out_path, text);
 }
 
+// A static copy must not be morphed a second time by a viewer: the mesh loses its morph targets
+// and default weights, the nodes instantiating it their weights, and the clips the weights
+// channels of those nodes (a sampler left unused goes too, and a clip left without channels).
+void drop_morph_targets(tinygltf::Model& model, int mesh) {
+  for (tinygltf::Primitive& prim : model.meshes[mesh].primitives) prim.targets.clear();
+  model.meshes[mesh].weights.clear();
+  std::set<int> nodes;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i)
+    if (model.nodes[i].mesh == mesh) {
+      nodes.insert(static_cast<int>(i));
+      model.nodes[i].weights.clear();
+    }
+  for (auto a = model.animations.begin(); a != model.animations.end();) {
+    auto& channels = a->channels;
+    const auto removed = std::remove_if(channels.begin(), channels.end(), [&](const auto& c) {
+      return c.target_path == "weights" && nodes.count(c.target_node) > 0;
+    });
+    if (removed == channels.end()) {
+      ++a;
+      continue;
+    }
+    channels.erase(removed, channels.end());
+    if (channels.empty()) {
+      a = model.animations.erase(a);
+      continue;
+    }
+    std::vector<int> renumbered(a->samplers.size(), -1);
+    for (const auto& c : channels)
+      if (c.sampler >= 0 && c.sampler < static_cast<int>(renumbered.size()))
+        renumbered[c.sampler] = 0;
+    std::vector<tinygltf::AnimationSampler> kept;
+    for (std::size_t s = 0; s < a->samplers.size(); ++s)
+      if (renumbered[s] == 0) {
+        renumbered[s] = static_cast<int>(kept.size());
+        kept.push_back(a->samplers[s]);
+      }
+    for (auto& c : channels)
+      if (c.sampler >= 0 && c.sampler < static_cast<int>(renumbered.size()))
+        c.sampler = renumbered[c.sampler];
+    a->samplers = std::move(kept);
+    ++a;
+  }
+}
+
 }  // namespace
 
 void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std::string& out_path) {
@@ -648,6 +692,7 @@ MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positi
       it = it->first.rfind("JOINTS_", 0) == 0 || it->first.rfind("WEIGHTS_", 0) == 0
                ? prim.attributes.erase(it)
                : std::next(it);
+  drop_morph_targets(model, doc->mesh);
   doc->raw_positions = raw_positions;
 
   MeshFile out;

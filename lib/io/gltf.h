@@ -8,7 +8,7 @@
 // that order, so patch files count triangles. Raw vertices (the elements of each primitive's
 // POSITION accessor, primitives concatenated) are welded by exact position for connectivity:
 // welded vertex ids follow the first raw vertex at each position. Morph targets are not applied
-// (the base POSITION is the surface).
+// here (the base POSITION is the surface; io/gltf_rig and pose/ apply them with --animation).
 #pragma once
 
 #include <string>
@@ -50,11 +50,13 @@ std::vector<Index> weld_positions(const Positions3& raw);
 /// \throw Error(Output) when a file cannot be written.
 void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std::string& out_path);
 
-/// A static copy of a skinned `character` in a given pose: POSITION (and NORMAL, when both the
+/// A static copy of an animated `character` in a given pose: POSITION (and NORMAL, when both the
 /// primitive and `raw_normals` have them) of every raw vertex replaced by the pose, the skin
-/// detached from the mesh's nodes and JOINTS_n/WEIGHTS_n dropped from its primitives (a viewer
-/// would otherwise deform it again). The welded mesh takes each welded vertex's first raw copy.
-/// \param raw_positions one per raw vertex, in the mesh node's space (pose/skinning.h
+/// detached from the mesh's nodes, JOINTS_n/WEIGHTS_n dropped from its primitives, and its morph
+/// targets, their weights (mesh and nodes) and the weights channels of its nodes removed (a
+/// viewer would otherwise deform it again; a sampler or clip left unused goes too). The welded mesh
+/// takes each welded vertex's first raw copy. \param raw_positions one per raw vertex, in the mesh
+/// node's space (pose/skinning.h
 ///        to_node_space), so that a viewer shows the pose where the animated character is.
 /// \param raw_normals one per raw vertex, or empty to keep the stored normals.
 MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positions,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -81,7 +82,7 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
         fail(path + ": node " + std::to_string(i), "is its own ancestor");
   }
 
-  // The skin.
+  // The mesh node: the first node giving the mesh a skin, else the first instantiating it.
   int skin_index = -1;
   for (std::size_t i = 0; i < model.nodes.size(); ++i)
     if (model.nodes[i].mesh == doc.mesh && model.nodes[i].skin >= 0) {
@@ -89,38 +90,110 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
       rig.mesh_node = static_cast<Index>(i);
       break;
     }
+  if (rig.mesh_node < 0)
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+      if (model.nodes[i].mesh == doc.mesh) {
+        rig.mesh_node = static_cast<Index>(i);
+        break;
+      }
   const std::string mesh_where = path + ": mesh " + std::to_string(doc.mesh);
-  if (skin_index < 0) fail(mesh_where, "is not skinned: no node gives it a skin");
-  if (skin_index >= static_cast<int>(model.skins.size()))
-    fail(mesh_where, "skin " + std::to_string(skin_index) + " does not exist");
-  const tinygltf::Skin& skin = model.skins[skin_index];
-  const std::string skin_where = path + ": skin " + std::to_string(skin_index);
-  for (int j : skin.joints) {
-    if (j < 0 || j >= static_cast<int>(model.nodes.size()))
-      fail(skin_where, "joint node " + std::to_string(j) + " does not exist");
-    rig.skin.joints.push_back(j);
-  }
-  const std::size_t joint_count = rig.skin.joints.size();
-  rig.skin.inverse_bind.assign(joint_count, Mat4::Identity());
-  if (skin.inverseBindMatrices >= 0) {
-    const std::string w =
-        skin_where + ": inverseBindMatrices accessor " + std::to_string(skin.inverseBindMatrices);
-    const std::vector<double> m = gltf_accessor_values(model, skin.inverseBindMatrices, w);
-    if (model.accessors[skin.inverseBindMatrices].type != TINYGLTF_TYPE_MAT4 ||
-        m.size() < 16 * joint_count)
-      fail(w, "must hold a MAT4 for each of the " + std::to_string(joint_count) + " joints");
-    for (std::size_t j = 0; j < joint_count; ++j)
-      rig.skin.inverse_bind[j] = Eigen::Map<const Eigen::Matrix4d>(m.data() + 16 * j);
+  const tinygltf::Mesh& mesh = model.meshes[doc.mesh];
+
+  // Morph targets: every triangle primitive has the same number (glTF 2.0 section 3.7.2.2).
+  std::size_t target_count = 0;
+  for (std::size_t k = 0; k < doc.primitives.size(); ++k) {
+    const std::size_t n = mesh.primitives[doc.primitives[k].primitive].targets.size();
+    if (k == 0) target_count = n;
+    if (n != target_count)
+      fail(mesh_where + " primitive " + std::to_string(doc.primitives[k].primitive),
+           "has " + std::to_string(n) + " morph targets, primitive " +
+               std::to_string(doc.primitives[0].primitive) + " has " +
+               std::to_string(target_count) + " (glTF requires the same number)");
   }
 
-  // Influences, bind positions and normals of every raw vertex.
-  const tinygltf::Mesh& mesh = model.meshes[doc.mesh];
+  // Something must pose the mesh: a skin, morph targets, or an animation of its node (or of a
+  // node above it), which then moves it rigidly (or scales it).
+  if (skin_index < 0 && target_count == 0) {
+    bool moved = false;
+    for (const tinygltf::Animation& a : model.animations)
+      for (const tinygltf::AnimationChannel& ch : a.channels) {
+        if (ch.target_path == "weights" || ch.target_node < 0 ||
+            ch.target_node >= static_cast<int>(model.nodes.size()))
+          continue;
+        for (Index j = rig.mesh_node; j >= 0; j = rig.nodes[j].parent) moved |= j == ch.target_node;
+      }
+    if (!moved)
+      fail(mesh_where,
+           "is not skinned (no node gives it a skin), has no morph targets, and no "
+           "animation moves its node: nothing poses it");
+  }
+  if (skin_index < 0 && rig.mesh_node < 0)
+    fail(mesh_where, "has morph targets but no node instantiates it: nothing animates them");
+
+  // The skin, when there is one.
+  if (skin_index >= static_cast<int>(model.skins.size()))
+    fail(mesh_where, "skin " + std::to_string(skin_index) + " does not exist");
+  if (skin_index >= 0) {
+    const tinygltf::Skin& skin = model.skins[skin_index];
+    const std::string skin_where = path + ": skin " + std::to_string(skin_index);
+    if (skin.joints.empty()) fail(skin_where, "has no joints");
+    for (int j : skin.joints) {
+      if (j < 0 || j >= static_cast<int>(model.nodes.size()))
+        fail(skin_where, "joint node " + std::to_string(j) + " does not exist");
+      rig.skin.joints.push_back(j);
+    }
+    const std::size_t joint_count = rig.skin.joints.size();
+    rig.skin.inverse_bind.assign(joint_count, Mat4::Identity());
+    if (skin.inverseBindMatrices >= 0) {
+      const std::string w =
+          skin_where + ": inverseBindMatrices accessor " + std::to_string(skin.inverseBindMatrices);
+      const std::vector<double> m = gltf_accessor_values(model, skin.inverseBindMatrices, w);
+      if (model.accessors[skin.inverseBindMatrices].type != TINYGLTF_TYPE_MAT4 ||
+          m.size() < 16 * joint_count)
+        fail(w, "must hold a MAT4 for each of the " + std::to_string(joint_count) + " joints");
+      for (std::size_t j = 0; j < joint_count; ++j)
+        rig.skin.inverse_bind[j] = Eigen::Map<const Eigen::Matrix4d>(m.data() + 16 * j);
+    }
+  }
+  const std::size_t joint_count = rig.skin.joints.size();
+
+  // Influences (when skinned), bind positions and normals of every raw vertex, morph targets.
   bool all_normals = true;
   for (const GltfPrimitive& gp : doc.primitives) all_normals &= gp.normal_accessor >= 0;
   rig.bind_positions = doc.raw_positions;
+  rig.targets.resize(target_count);
   for (const GltfPrimitive& gp : doc.primitives) {
     const tinygltf::Primitive& prim = mesh.primitives[gp.primitive];
     const std::string where = mesh_where + " primitive " + std::to_string(gp.primitive);
+    if (all_normals) {
+      const std::vector<double> normals =
+          gltf_accessor_values(model, gp.normal_accessor,
+                               where + ": NORMAL accessor " + std::to_string(gp.normal_accessor));
+      for (Index v = 0; v < gp.raw_count; ++v)
+        rig.bind_normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+    }
+    for (std::size_t t = 0; t < target_count; ++t)
+      for (const char* attribute : {"POSITION", "NORMAL"}) {
+        const auto it = prim.targets[t].find(attribute);
+        if (it == prim.targets[t].end()) continue;  // a target may omit either
+        const std::string tw = where + ": morph target " + std::to_string(t) + " " + attribute +
+                               " accessor " + std::to_string(it->second);
+        const std::vector<double> d = gltf_accessor_values(model, it->second, tw);
+        if (model.accessors[it->second].type != TINYGLTF_TYPE_VEC3 ||
+            d.size() != 3 * static_cast<std::size_t>(gp.raw_count))
+          fail(tw,
+               "must be VEC3 with one element per vertex (" + std::to_string(gp.raw_count) + ")");
+        const bool position = attribute[0] == 'P';
+        MorphTarget& m = rig.targets[t];
+        for (Index v = 0; v < gp.raw_count; ++v) {
+          const Vec3 delta(d[3 * v], d[3 * v + 1], d[3 * v + 2]);
+          if (!delta.allFinite()) fail(tw, "element " + std::to_string(v) + " is not finite");
+          if (delta == Vec3::Zero()) continue;
+          (position ? m.position_vertex : m.normal_vertex).push_back(gp.raw_offset + v);
+          (position ? m.position_delta : m.normal_delta).push_back(delta);
+        }
+      }
+    if (skin_index < 0) continue;  // JOINTS_n/WEIGHTS_n without a skin mean nothing
     std::vector<std::vector<double>> joints, weights;
     for (int set = 0;; ++set) {
       const auto j = prim.attributes.find("JOINTS_" + std::to_string(set));
@@ -143,11 +216,6 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
         fail(ww, "must be VEC4 with one element per vertex");
     }
     if (joints.empty()) fail(where, "has no JOINTS_0/WEIGHTS_0: it cannot be skinned");
-    std::vector<double> normals;
-    if (all_normals)
-      normals =
-          gltf_accessor_values(model, gp.normal_accessor,
-                               where + ": NORMAL accessor " + std::to_string(gp.normal_accessor));
     for (Index v = 0; v < gp.raw_count; ++v) {
       double total = 0;
       for (std::size_t s = 0; s < joints.size(); ++s)
@@ -165,12 +233,33 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
         }
       if (!(total > 0)) fail(where, "vertex " + std::to_string(v) + " has no positive skin weight");
       rig.influences.start.push_back(static_cast<Index>(rig.influences.joint.size()));
-      if (all_normals)
-        rig.bind_normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
     }
   }
 
-  // Animations (TRS channels; morph-weight channels do not move a skinned bind).
+  // Default morph weights: the mesh node's, else the mesh's, else zeros.
+  rig.weights.assign(target_count, 0.0);
+  if (target_count > 0) {
+    if (!mesh.weights.empty()) {
+      if (mesh.weights.size() != target_count)
+        fail(mesh_where, "has " + std::to_string(mesh.weights.size()) + " weights for " +
+                             std::to_string(target_count) + " morph targets");
+      rig.weights = mesh.weights;
+    }
+    const tinygltf::Node& node = model.nodes[rig.mesh_node];
+    if (!node.weights.empty()) {
+      if (node.weights.size() != target_count)
+        fail(path + ": node " + std::to_string(rig.mesh_node),
+             "has " + std::to_string(node.weights.size()) + " weights for the " +
+                 std::to_string(target_count) + " morph targets of its mesh");
+      rig.weights = node.weights;
+    }
+    for (std::size_t t = 0; t < target_count; ++t)
+      if (!std::isfinite(rig.weights[t]))
+        fail(mesh_where, "morph weight " + std::to_string(t) + " is not finite");
+  }
+
+  // Animations: TRS channels of every node; the weights channel of the mesh node (other nodes'
+  // weights do not move this mesh).
   for (std::size_t a = 0; a < model.animations.size(); ++a) {
     const tinygltf::Animation& src = model.animations[a];
     const std::string where = path + ": animation " + std::to_string(a);
@@ -180,7 +269,7 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
     for (std::size_t c = 0; c < src.channels.size(); ++c) {
       const tinygltf::AnimationChannel& ch = src.channels[c];
       const std::string cw = where + " channel " + std::to_string(c);
-      if (ch.target_path == "weights" || ch.target_node < 0) continue;
+      if (ch.target_node < 0) continue;
       AnimationChannel out;
       if (ch.target_path == "translation")
         out.path = ChannelPath::Translation;
@@ -188,20 +277,27 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
         out.path = ChannelPath::Rotation;
       else if (ch.target_path == "scale")
         out.path = ChannelPath::Scale;
+      else if (ch.target_path == "weights")
+        out.path = ChannelPath::Weights;
       else
         fail(cw, "unknown target path \"" + ch.target_path + "\"");
       if (ch.target_node >= static_cast<int>(model.nodes.size()))
         fail(cw, "target node " + std::to_string(ch.target_node) + " does not exist");
-      if (rig.nodes[ch.target_node].rest.has_matrix)
+      if (out.path == ChannelPath::Weights) {
+        if (ch.target_node != rig.mesh_node || target_count == 0) continue;
+      } else if (rig.nodes[ch.target_node].rest.has_matrix) {
         fail(cw, "animates node " + std::to_string(ch.target_node) +
                      ", which has a matrix (glTF allows only TRS there)");
+      }
       out.node = ch.target_node;
       if (ch.sampler < 0 || ch.sampler >= static_cast<int>(src.samplers.size()))
         fail(cw, "sampler " + std::to_string(ch.sampler) + " does not exist");
       const tinygltf::AnimationSampler& s = src.samplers[ch.sampler];
       const std::string sw = where + " sampler " + std::to_string(ch.sampler);
       out.sampler.interpolation = interpolation(s.interpolation, sw);
-      out.sampler.width = out.path == ChannelPath::Rotation ? 4 : 3;
+      out.sampler.width = out.path == ChannelPath::Rotation  ? 4
+                          : out.path == ChannelPath::Weights ? static_cast<int>(target_count)
+                                                             : 3;
       out.sampler.times =
           gltf_accessor_values(model, s.input, sw + ": input accessor " + std::to_string(s.input));
       out.sampler.values = gltf_accessor_values(
@@ -211,10 +307,16 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
           out.sampler.width * (out.sampler.interpolation == Interpolation::CubicSpline ? 3 : 1);
       if (keys == 0) fail(sw, "has no keys");
       if (model.accessors[s.input].type != TINYGLTF_TYPE_SCALAR) fail(sw, "input must be SCALAR");
-      if (gltf_component_count(model.accessors[s.output].type) != out.sampler.width ||
+      // Weights are SCALAR, one element per target per key (x3 for CUBICSPLINE).
+      const int output_width = out.path == ChannelPath::Weights ? 1 : out.sampler.width;
+      if (gltf_component_count(model.accessors[s.output].type) != output_width ||
           out.sampler.values.size() != keys * per_key)
         fail(sw, "output has " + std::to_string(out.sampler.values.size()) + " numbers; " +
-                     ch.target_path + " with " + std::to_string(keys) + " keys needs " +
+                     ch.target_path +
+                     (out.path == ChannelPath::Weights
+                          ? " of " + std::to_string(target_count) + " morph targets"
+                          : std::string()) +
+                     " with " + std::to_string(keys) + " keys needs " +
                      std::to_string(keys * per_key));
       for (std::size_t k = 1; k < keys; ++k)
         if (!(out.sampler.times[k] > out.sampler.times[k - 1]))

@@ -30,11 +30,9 @@ RigClip rig_clip(const MeshFile& character, const RigOptions& options) {
 MeshFile rig_frame(const MeshFile& character, const RigClip& clip, std::size_t k) {
   SKINSLIDE_CHECK(k < clip.times.size(), "frame index out of range");
   const Rig& rig = clip.rig;
-  const Pose world = pose_at(rig, &rig.animations[clip.animation], clip.times[k]);
-  // The mesh node's rest world matrix (its transform is not animated in any sane rig; glTF
-  // ignores it for skinning, and a static copy is shown through it).
-  const std::vector<Mat4> rest_world = world_matrices(rig, animated_transforms(rig, nullptr, 0));
-  const Pose local = to_node_space(world, rest_world[rig.mesh_node]);
+  // In the mesh node's space at rest (glTF ignores that node's transform for skinning, and a
+  // static copy is shown through it); an unskinned mesh's node motion is kept relative to it.
+  const Pose local = node_space_pose_at(rig, &rig.animations[clip.animation], clip.times[k]);
   return posed_gltf_file(character, local.positions, local.normals);
 }
 

@@ -1,5 +1,6 @@
 // A rigged, animated glTF character as the frame source: the bind is the mesh as stored, each
-// frame the skin posed at one sampled time of one clip (pose/animation.h, pose/skinning.h).
+// frame the mesh posed (morph targets, then the skin or the mesh node's transform) at one sampled
+// time of one clip (pose/animation.h, pose/skinning.h).
 #pragma once
 
 #include <string>
@@ -25,12 +26,14 @@ struct RigClip {
 };
 
 /// The rig and sample times of `character` (read by read_gltf_file).
-/// \throw Error(Input) when it is not a skinned glTF; Error(Usage) when the clip does not exist.
+/// \throw Error(Input) when nothing poses its mesh (gltf_rig); Error(Usage) when the clip does
+///        not exist.
 RigClip rig_clip(const MeshFile& character, const RigOptions& options);
 
-/// Frame `k` of the clip: `character` posed at times[k] (linear blend skinning), expressed in the
-/// mesh node's space, as a static glTF document (io/gltf.h posed_gltf_file) whose `mesh` has the
-/// bind's faces. Pure: frames may be made in parallel.
+/// Frame `k` of the clip: `character` posed at times[k] (morph targets, then linear blend
+/// skinning or the mesh node's transform), expressed in the mesh node's space at rest
+/// (pose/skinning.h node_space_pose_at), as a static glTF document (io/gltf.h posed_gltf_file)
+/// whose `mesh` has the bind's faces. Pure: frames may be made in parallel.
 MeshFile rig_frame(const MeshFile& character, const RigClip& clip, std::size_t k);
 
 }  // namespace skinslide

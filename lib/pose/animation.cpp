@@ -85,6 +85,7 @@ std::vector<NodeTransform> animated_transforms(const Rig& rig, const Animation* 
   for (std::size_t i = 0; i < rig.nodes.size(); ++i) local[i] = rig.nodes[i].rest;
   if (animation == nullptr) return local;
   for (const AnimationChannel& c : animation->channels) {
+    if (c.path == ChannelPath::Weights) continue;
     SKINSLIDE_CHECK(c.node >= 0 && c.node < static_cast<Index>(local.size()), "channel node");
     NodeTransform& x = local[c.node];
     const bool rotation = c.path == ChannelPath::Rotation;
@@ -99,9 +100,24 @@ std::vector<NodeTransform> animated_transforms(const Rig& rig, const Animation* 
       case ChannelPath::Scale:
         x.scale = v.head<3>();
         break;
+      case ChannelPath::Weights:
+        break;
     }
   }
   return local;
+}
+
+std::vector<double> animated_weights(const Rig& rig, const Animation* animation, double t) {
+  std::vector<double> w = rig.weights;
+  if (animation == nullptr) return w;
+  for (const AnimationChannel& c : animation->channels) {
+    if (c.path != ChannelPath::Weights) continue;
+    SKINSLIDE_CHECK(c.sampler.width == static_cast<int>(w.size()),
+                    "weights channel width differs from the target count");
+    const Eigen::VectorXd v = sample(c.sampler, t, false);
+    for (std::size_t i = 0; i < w.size(); ++i) w[i] = v[static_cast<Eigen::Index>(i)];
+  }
+  return w;
 }
 
 std::vector<double> fps_times(const Animation& animation, double fps) {

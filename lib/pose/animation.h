@@ -22,9 +22,15 @@ Eigen::VectorXd sample(const AnimationSampler& sampler, double t, bool is_rotati
 Quat slerp(const Quat& a, const Quat& b, double s);
 
 /// Local transform of every node at time `t` of `animation`: the rest transforms, with each
-/// channel's path replaced by its sampled value. `animation` null = the rest pose.
+/// translation/rotation/scale channel's path replaced by its sampled value. `animation` null =
+/// the rest pose.
 std::vector<NodeTransform> animated_transforms(const Rig& rig, const Animation* animation,
                                                double t);
+
+/// Morph weights (#targets) at time `t` of `animation`: rig.weights, replaced as a whole by the
+/// clip's weights channel when it has one (glTF 2.0 section 3.11: the sampler's output holds one
+/// value per target per key, interpolated like any vector). `animation` null = rig.weights.
+std::vector<double> animated_weights(const Rig& rig, const Animation* animation, double t);
 
 /// Times start, start + 1/fps, ... up to `end` (a time within 1e-9 s of `end` counts as `end`).
 /// \pre fps > 0

@@ -1,6 +1,7 @@
-// A skinned, animated character as plain data: node hierarchy, one skin, per-vertex influences
-// and animation clips. Filled from glTF by io/gltf_rig.h; posed by pose/animation.h and
-// pose/skinning.h. Conventions are glTF 2.0's (section 3.7.3 skins, 3.11 animations).
+// An animated character as plain data: node hierarchy, one skin (or none), per-vertex influences,
+// morph targets and animation clips. Filled from glTF by io/gltf_rig.h; posed by
+// pose/animation.h and pose/skinning.h. Conventions are glTF 2.0's (section 3.7.2.2 morph
+// targets, 3.7.3 skins, 3.11 animations).
 #pragma once
 
 #include <string>
@@ -47,11 +48,11 @@ struct Influences {
 };
 
 enum class Interpolation { Step, Linear, CubicSpline };
-enum class ChannelPath { Translation, Rotation, Scale };
+enum class ChannelPath { Translation, Rotation, Scale, Weights };
 
 /// One animation sampler with its keys. `values` holds `width` doubles per key (3 for
-/// translation/scale, 4 for rotation as x, y, z, w); CUBICSPLINE holds 3 per key
-/// (in-tangent, value, out-tangent), as glTF stores them.
+/// translation/scale, 4 for rotation as x, y, z, w, one per morph target for weights);
+/// CUBICSPLINE holds 3 per key (in-tangent, value, out-tangent), as glTF stores them.
 struct AnimationSampler {
   Interpolation interpolation = Interpolation::Linear;
   std::vector<double> times;   ///< seconds, strictly increasing
@@ -59,6 +60,8 @@ struct AnimationSampler {
   int width = 3;
 };
 
+/// A Weights channel always targets Rig::mesh_node (channels animating other nodes' weights do
+/// not move the mesh and are not kept).
 struct AnimationChannel {
   Index node = -1;
   ChannelPath path = ChannelPath::Translation;
@@ -67,20 +70,39 @@ struct AnimationChannel {
 
 struct Animation {
   std::string name;  ///< may be empty (three of the four shared characters have no names)
-  std::vector<AnimationChannel> channels;  ///< morph-weight channels are not kept
+  std::vector<AnimationChannel> channels;  ///< TRS of any node; weights of the mesh node only
   double start = 0;                        ///< earliest key time over all channels
   double end = 0;                          ///< latest key time
+};
+
+/// One morph target: the displacements it adds, per unit weight, to the raw vertices it moves
+/// (those with a non-zero displacement; ascending raw ids). A target without POSITION (or
+/// NORMAL) in a primitive moves none of that primitive's vertices (or normals).
+struct MorphTarget {
+  std::vector<Index> position_vertex;
+  Positions3 position_delta;
+  std::vector<Index> normal_vertex;
+  Positions3 normal_delta;  ///< used only when Rig::bind_normals is not empty
 };
 
 /// Everything needed to pose the character's vertices.
 struct Rig {
   std::vector<RigNode> nodes;
-  Index mesh_node = -1;  ///< the node that instantiates the mesh with `skin`
-  Skin skin;
-  Influences influences;      ///< one entry per raw vertex
-  Positions3 bind_positions;  ///< raw vertex positions as stored (the bind pose)
-  Positions3 bind_normals;    ///< raw normals as stored; empty when the mesh has none
+  /// The node that instantiates the mesh: the first (in node order) giving it a skin, else the
+  /// first instantiating it.
+  Index mesh_node = -1;
+  Skin skin;                         ///< no joints: the mesh is not skinned (see skinned())
+  Influences influences;             ///< one entry per raw vertex when skinned, else none
+  Positions3 bind_positions;         ///< raw vertex positions as stored (the bind pose)
+  Positions3 bind_normals;           ///< raw normals as stored; empty when the mesh has none
+  std::vector<MorphTarget> targets;  ///< the mesh's morph targets, in glTF order
+  /// Morph weights without animation (#targets): the mesh node's `weights`, else the mesh's,
+  /// else zeros.
+  std::vector<double> weights;
   std::vector<Animation> animations;
+
+  /// Skinned meshes ignore their node's transform; unskinned ones are placed by it.
+  bool skinned() const { return !skin.joints.empty(); }
 };
 
 }  // namespace skinslide
