@@ -105,6 +105,34 @@ def fan(face):
     return [(face[0], face[i], face[i + 1]) for i in range(1, len(face) - 1)]
 
 
+def head_groups(faces, materials):
+    """The OBJ face ids of each primitive (MATERIALS), checked to be the OBJ's first faces."""
+    groups = []
+    for m in MATERIALS:
+        ids = [i for i, x in enumerate(materials) if x == m]
+        if not ids:
+            sys.exit("make_face_rig: no faces with material %s" % m)
+        groups.append(ids)
+    if groups[0] != list(range(len(groups[0]))) or groups[1][0] != len(groups[0]):
+        sys.exit("make_face_rig: the head's faces are not the first ones of the OBJ")
+    return groups
+
+
+def primitive_vertices(faces, ids):
+    """A primitive's raw vertices ((v, vt) pairs of OBJ faces `ids`, in order of first use) and
+    its fan triangles over them."""
+    raw, index, tris = [], {}, []
+    for fi in ids:
+        corners = []
+        for c in faces[fi]:
+            if c not in index:
+                index[c] = len(raw)
+                raw.append(c)
+            corners.append(index[c])
+        tris += fan(corners)
+    return raw, tris
+
+
 def vertex_normals(pos, faces):
     """Area-weighted normals of the fan triangles, per OBJ vertex (zero where unused)."""
     acc = {}
@@ -183,30 +211,14 @@ def build(obj_dir):
             sys.exit("make_face_rig: %s.obj does not have the neutral mesh's vertices and faces"
                      % name)
         expressions.append(epos)
-    groups = []
-    for m in MATERIALS:
-        ids = [i for i, x in enumerate(materials) if x == m]
-        if not ids:
-            sys.exit("make_face_rig: no faces with material %s" % m)
-        groups.append(ids)
-    if groups[0] != list(range(len(groups[0]))) or groups[1][0] != len(groups[0]):
-        sys.exit("make_face_rig: the head's faces are not the first ones of the OBJ")
+    groups = head_groups(faces, materials)
     head = [faces[i] for g in groups for i in g]
     base32 = [tuple(f32(c) for c in p) for p in pos]
     normals = [vertex_normals(pos, head)] + [vertex_normals(e, head) for e in expressions]
     buf = Buffer()
     primitives = []
     for g in groups:
-        raw, index = [], {}
-        tris = []
-        for fi in g:
-            corners = []
-            for c in faces[fi]:
-                if c not in index:
-                    index[c] = len(raw)
-                    raw.append(c)
-                corners.append(index[c])
-            tris += fan(corners)
+        raw, tris = primitive_vertices(faces, g)
         attributes = {
             "POSITION": buf.vec([base32[v] for v, _ in raw], 3, bounds=True),
             "NORMAL": buf.vec([normals[0][v] for v, _ in raw], 3)}

@@ -124,7 +124,7 @@ Rig gltf_rig(const GltfDocument& doc, const std::string& path) {
       }
     if (!moved)
       fail(mesh_where,
-           "is not skinned (no node gives it a skin), has no morph targets, and no "
+           "is not skinned: no node gives it a skin; it has no morph targets, and no "
            "animation moves its node: nothing poses it");
   }
   if (skin_index < 0 && rig.mesh_node < 0)

@@ -58,6 +58,21 @@ def read_v_f(path):
     return v, f
 
 
+def read_glb(path):
+    data = open(path, "rb").read()
+    n = struct.unpack_from("<I", data, 12)[0]
+    return json.loads(data[20:20 + n]), data[28 + n:28 + n + struct.unpack_from("<I", data, 20 + n)[0]]
+
+
+def floats(doc, chunk, accessor):
+    """A plain float VEC3 accessor's elements."""
+    a = doc["accessors"][accessor]
+    view = doc["bufferViews"][a["bufferView"]]
+    base = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+    stride = view.get("byteStride", 12)
+    return [struct.unpack_from("<3f", chunk, base + i * stride) for i in range(a["count"])]
+
+
 def run(args, **kw):
     return subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **kw)
 
@@ -164,6 +179,26 @@ def test(binary, tmp):
                 check("%s %s matches to 1e-5 of the diagonal" % (clip, name), err < 1e-5,
                       "%.3g" % err)
 
+    # NORMAL: the morphed normals, renormalised. Frame 1 of "blend" is jawOpen: each raw
+    # vertex's normal is jawOpen's area-weighted normal (make_face_rig.vertex_normals).
+    posed = os.path.join(tmp, "posed")
+    r = run([binary, "-q", "--patch", patch, "--animation", "blend", "--frames", "1",
+             "--strength", "0", glb, "-o", posed])
+    check("blend frame 1 as GLB runs", r.returncode == 0, r.stdout)
+    if r.returncode == 0:
+        pos, _, obj_faces, materials = rig.read_obj(os.path.join(OBJ_DIR, "generic_neutral_mesh.obj"))
+        groups = rig.head_groups(obj_faces, materials)
+        jaw = rig.vertex_normals(expressions[0], [obj_faces[i] for g in groups for i in g])
+        doc, chunk = read_glb(os.path.join(posed, "face.0001.glb"))
+        worst = 0.0
+        for g, prim in zip(groups, doc["meshes"][0]["primitives"]):
+            raw, _ = rig.primitive_vertices(obj_faces, g)
+            normals = floats(doc, chunk, prim["attributes"]["NORMAL"])
+            for (v, _), n in zip(raw, normals):
+                worst = max(worst, max(abs(a - b) for a, b in zip(n, jaw[v])))
+        report.append("blend face.0001.glb NORMAL vs jawOpen's normals: %.2e" % worst)
+        check("jawOpen's frame has jawOpen's normals (to 1e-5)", worst < 1e-5, "%.3g" % worst)
+
     # The default slide on two frames: static GLB copies that validate.
     slid = os.path.join(tmp, "slid")
     r = run([binary, "-q", "--patch", patch, "--animation", "blend", "--frames", "1,2", glb,
@@ -173,9 +208,7 @@ def test(binary, tmp):
     check("two GLB frames", [os.path.basename(p) for p in outputs] ==
           ["face.0001.glb", "face.0002.glb"], str(outputs))
     for path in outputs:
-        data = open(path, "rb").read()
-        doc = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
-        mesh = doc["meshes"][0]
+        mesh = read_glb(path)[0]["meshes"][0]
         check(os.path.basename(path) + " is static: no morph targets, weights or weights channels",
               all("targets" not in p for p in mesh["primitives"]) and "weights" not in mesh and
               all(c["target"]["path"] != "weights" for a in doc.get("animations", [])
