@@ -650,8 +650,9 @@ int main(int argc, char** argv) {
       ->type_name("NAME|INDEX")
       ->group(gl);
   auto* anim = app.add_option("--animation", o.animation,
-                              "BIND is a rigged glTF character: pose its skin at each sampled time "
-                              "of this clip (name, else index) and slide those frames")
+                              "BIND is an animated glTF character (skin and/or morph targets): pose "
+                              "it at each sampled time of this clip (name, else index) and slide "
+                              "those frames")
                    ->type_name("NAME|INDEX")
                    ->excludes(frames_opt)
                    ->group(gl);
