@@ -610,12 +610,14 @@ int main(int argc, char** argv) {
   CliOptions o;
   CLI::App app{
       "skinslide " + std::string(version()) +
-          ": skin sliding for deformed character meshes (Yang & Zhang 2010, force-density bar "
-          "nets).\n"
-          "Flattens each patch of the bind mesh and of every frame onto the unit square and moves "
-          "the\n"
-          "frame's patch vertices back to where the bind's flattening puts them, on the frame's "
-          "surface.\n"
+          ": skin sliding for deformed character meshes.\n"
+          "Moves each patch's free vertices along the frame's surface so that the skin's bind "
+          "edge lengths\n"
+          "come back: by default (--method elastic) they relax in a fixed chart of the patch "
+          "towards the\n"
+          "bind's shape with fold-free, energy-decreasing steps; --method paper flattens bind and "
+          "frame with\n"
+          "force-density bar nets (Yang & Zhang 2010). The patch border and holes never move.\n"
           "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, "
           "`12-40`,\n"
           "`pBody.f[12:40]`; whitespace or commas between them, `#` comments. For .gltf/.glb the "
@@ -722,23 +724,23 @@ int main(int argc, char** argv) {
       ->group(method);
   app.add_option(
          "--density", o.density,
-         "Force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
+         "Paper: force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
          "= Lmin/L, uniform = 1")
       ->capture_default_str()
       ->check(CLI::IsMember({"paper", "inverse", "length", "uniform"}))
       ->group(method);
   app.add_option("--holes", o.holes,
-                 "Inner boundary loops in the bind net: free (the paper) or fill (a virtual centre "
+                 "Paper: inner boundary loops in the bind net: free (the paper) or fill (a virtual centre "
                  "node per hole)")
       ->capture_default_str()
       ->check(CLI::IsMember({"free", "fill"}))
       ->group(method);
-  app.add_option("--q-floor", o.q_floor, "Smallest force density (paper, inverse)")
+  app.add_option("--q-floor", o.q_floor, "Paper: smallest force density (densities paper, inverse)")
       ->capture_default_str()
       ->check(CLI::Range(1e-12, 1.0))
       ->group(method);
   const std::string solver_help =
-      "How bind and frame nets are solved: cholesky (sparse factor, analysis reused by every "
+      "Paper: how bind and frame nets are solved: cholesky (sparse factor, analysis reused by every "
       "frame), multigrid (conjugate gradient preconditioned by an aggregation multigrid; no "
       "ordering, so a shorter set-up, and faster frames on large patches), auto (multigrid for "
       "patches of " +
@@ -750,23 +752,24 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "cholesky", "multigrid", "cg"}))
       ->group(method);
   app.add_option("--cg-tolerance", o.cg_tolerance,
-                 "CG (multigrid, cg) stops at |r| <= tol |b|; every method keeps a frame's warm "
+                 "Paper: CG (multigrid, cg) stops at |r| <= tol |b|; every method keeps a frame's warm "
                  "start that meets it")
       ->capture_default_str()
       ->check(CLI::Range(1e-16, 1e-2))
       ->group(method);
   app.add_option("--cg-max-iterations", o.cg_max_iterations,
-                 "Past this the frame net is solved directly (counted)")
+                 "Paper: past this the frame net is solved directly (counted)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000))
       ->group(method);
   app.add_option("--locate", o.locate,
-                 "Finding bind positions in frame nets: walk (from each vertex's own triangles) or "
+                 "Paper: finding bind positions in frame nets: walk (from each vertex's own triangles) or "
                  "image (a triangle-ID image, --lookup-size)")
       ->capture_default_str()
       ->check(CLI::IsMember({"walk", "image"}))
       ->group(method);
-  app.add_option("--lookup-size", o.lookup_size, "Side of the triangle-ID lookup image, pixels")
+  app.add_option("--lookup-size", o.lookup_size,
+                 "Side of the triangle-ID images (--locate image, --dump), pixels")
       ->capture_default_str()
       ->check(CLI::Range(8, 16384))
       ->group(method);
