@@ -364,6 +364,316 @@ class StepSystem {
   bool stale_ = false;
 };
 
+// One patch's relaxation in one frame: the frame, the slid patch so far, and the steps that
+// move it (README rules 6-10). The rounds are driven by relax_patch.
+class Relaxation {
+ public:
+  Relaxation(const ElasticSetup& setup, const Positions3& frame,
+             const std::vector<Vec3>& frame_normals, double scale, ElasticResult& result)
+      : setup_(setup),
+        chart_(setup.chart),
+        tris_(setup.chart.triangles),
+        nt_(setup.chart.patch_triangle_count),
+        m_(static_cast<Index>(setup.movable.size())),
+        frame_(frame),
+        normals_(frame_normals),
+        s_(scale),
+        result_(result),
+        x_(frame),
+        node_uv_(setup.chart.uv),
+        jacobian_(nt_),
+        on_vertex_(m_, 1),
+        T_(m_),
+        held_(m_),
+        switched_(m_),
+        hold_cap_(std::max<Index>(16, m_ / 10)),
+        system_(setup) {
+    for (Index t = 0; t < nt_; ++t) jacobian_[t] = chart_jacobian(setup, frame, t);
+  }
+
+  const Positions3& positions() const { return x_; }
+
+  // ARAP's local step: the rotations nearest the slid patch, held from here on.
+  void fit_rotations() {
+    R_ = fitted_rotations(setup_, x_, normals_);
+    E_ = held_rotation_energy(setup_, x_, s_, R_, &g_);
+  }
+  double energy() const { return E_; }
+
+  // One Gauss-Newton step in the chart, made a descent and fold-free; false when no step lowers
+  // the energy.
+  bool step() {
+    for (Index i = 0; i < m_; ++i)
+      T_[i] = on_vertex_[i] ? vertex_jacobian(setup_, frame_, normals_, setup_.movable[i])
+                            : jacobian_[result_.where[i].triangle];
+    std::fill(held_.begin(), held_.end(), 0);
+    std::fill(switched_.begin(), switched_.end(), 0);
+    std::vector<Direction> candidates = steps_with_holds(model_step());
+    for (Direction& c : candidates) descend(c);
+    result_.held += static_cast<int>(std::count(held_.begin(), held_.end(), 1));
+    Trial best;
+    double E_new = E_;
+    if (!line_search(candidates, best, E_new)) return false;
+    for (Index i = 0; i < m_; ++i) {
+      if (best.uv[i] == result_.uv[i]) continue;
+      result_.uv[i] = best.uv[i];
+      result_.where[i] = best.where[i];
+      node_uv_[setup_.movable[i]] = best.uv[i];
+      on_vertex_[i] = 0;
+    }
+    x_ = std::move(best.x);
+    E_ = held_rotation_energy(setup_, x_, s_, R_, &g_);
+    return true;
+  }
+
+ private:
+  // A step direction and its true first-order change: each vertex moves with the Jacobian of
+  // the triangle it enters.
+  struct Direction {
+    Positions2 d;
+    std::vector<Index> entered;
+    std::vector<Mat32> T_true;
+    double slope = 0;  // true
+    double model = 0;  // with the model's Jacobians
+  };
+  // Where a step puts the movable vertices, in the chart and on the frame.
+  struct Trial {
+    Positions2 uv;
+    std::vector<ChartPoint> where;
+    Positions3 x;
+  };
+
+  Direction direction(Positions2 d) const {
+    Direction out;
+    out.d = std::move(d);
+    out.entered.resize(m_);
+    out.T_true.resize(m_);
+    for (Index i = 0; i < m_; ++i) {
+      const Index v = setup_.movable[i];
+      out.entered[i] = entered_triangle(chart_, on_vertex_[i] ? v : -1, result_.uv[i],
+                                        result_.where[i].triangle, out.d[i]);
+      out.T_true[i] = jacobian_[out.entered[i]];
+      out.model += g_[v].dot(T_[i] * out.d[i]);
+      out.slope += g_[v].dot(out.T_true[i] * out.d[i]);
+    }
+    return out;
+  }
+
+  Trial trial(const Direction& dir, double alpha) const {
+    Trial t{result_.uv, result_.where, x_};
+    for (Index i = 0; i < m_; ++i) {
+      if (dir.d[i].isZero(0)) continue;
+      const Index v = setup_.movable[i];
+      t.uv[i] = result_.uv[i] + alpha * dir.d[i];
+      t.where[i] = locate_in_chart(chart_, t.uv[i], dir.entered[i]);
+      t.x[v] = surface_point(frame_, tris_[t.where[i].triangle], t.where[i]);
+    }
+    return t;
+  }
+
+  // Slid triangles turned against (or flat on) the frame's own, where the frame's has area.
+  std::vector<Index> turned(const Positions3& y) const {
+    std::vector<Index> out;
+    for (Index t = 0; t < nt_; ++t) {
+      const Triangle& tri = tris_[t];
+      if (normals_[t].isZero(0)) continue;
+      const Vec3 n = (y[tri[1]] - y[tri[0]]).cross(y[tri[2]] - y[tri[0]]);
+      if (!(n.dot(normals_[t]) > 0)) out.push_back(t);
+    }
+    return out;
+  }
+
+  double step_bound(const Direction& dir, std::vector<double>* roots) const {
+    Positions2 node_d(chart_.uv.size(), Vec2::Zero());
+    for (Index i = 0; i < m_; ++i) node_d[setup_.movable[i]] = dir.d[i];
+    return max_step(setup_, node_uv_, node_d, roots);
+  }
+
+  // A vertex still on its chart vertex was modelled with its tangent plane's least-squares map;
+  // its chart step is the one that moves it, in the wedge that holds that step, as the model
+  // meant: the wedge's own map inverted on the model's 3D motion.
+  Vec2 redirected(Index i, const Vec2& d) const {
+    const Index v = setup_.movable[i];
+    const Vec3 motion = T_[i] * d;
+    Vec2 best = d;
+    double best_score = -INFINITY;
+    for (Index k = chart_.corner_start[v]; k < chart_.corner_start[v + 1]; ++k) {
+      const Index t = chart_.corner_triangles[k];
+      const Triangle& tri = tris_[t];
+      const int c = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+      const Mat32& Tk = jacobian_[t];
+      const Eigen::Matrix2d A = Tk.transpose() * Tk;
+      if (!(std::abs(A.determinant()) > 0)) continue;
+      const Vec2 dk = A.inverse() * (Tk.transpose() * motion);
+      const Vec2 a = chart_.uv[tri[(c + 1) % 3]] - chart_.uv[v];
+      const Vec2 b = chart_.uv[tri[(c + 2) % 3]] - chart_.uv[v];
+      const double n = dk.norm();
+      if (!(n > 0)) continue;
+      const double score = std::min(cross2(a, dk) / (a.norm() * n), cross2(dk, b) / (b.norm() * n));
+      if (score > best_score) {
+        best_score = score;
+        best = dk;
+      }
+    }
+    return best;
+  }
+
+  Direction solved() {
+    Positions2 d;
+    if (!system_.solve(T_, held_, g_, d)) d.assign(m_, Vec2::Zero());
+    for (Index i = 0; i < m_; ++i)
+      if (on_vertex_[i] && !held_[i] && switched_[i] == 0 && !d[i].isZero(0))
+        d[i] = redirected(i, d[i]);
+    return direction(std::move(d));
+  }
+
+  // Model and truth disagree where a vertex sits on a chart vertex or edge, and Phi bends there:
+  // a vertex whose true first-order change goes up is given the Jacobian of the triangle it would
+  // enter, and re-solved; after three such changes it is held for this step.
+  Direction model_step() {
+    Direction dir = solved();
+    for (int round = 0; dir.slope > 0.5 * dir.model && round < 12; ++round) {
+      bool changed = false;
+      for (Index i = 0; i < m_; ++i) {
+        const Index v = setup_.movable[i];
+        if (held_[i] || !(g_[v].dot(dir.T_true[i] * dir.d[i]) > 0)) continue;
+        if (switched_[i] < 3 && !T_[i].isApprox(dir.T_true[i], 0)) {
+          T_[i] = dir.T_true[i];
+          ++switched_[i];
+        } else {
+          held_[i] = 1;
+        }
+        changed = true;
+      }
+      if (!changed) break;
+      dir = solved();
+    }
+    return dir;
+  }
+
+  // Holds every movable corner of triangle t; false when none was free.
+  bool hold_triangle(Index t) {
+    bool any = false;
+    for (Index v : tris_[t]) {
+      const Index i = setup_.movable_slot[v];
+      if (i >= 0 && !held_[i]) held_[i] = any = true;
+    }
+    return any;
+  }
+
+  // A step that a few triangles cut short (about to turn over in the chart, or against the frame)
+  // would leave the rest of the patch stuck: those triangles' vertices are held and the step
+  // solved again, within a budget of held vertices. Returns the step, and the held one if any.
+  std::vector<Direction> steps_with_holds(Direction dir) {
+    std::vector<Direction> candidates{std::move(dir)};
+    Index budget = hold_cap_;
+    for (int round = 0; round < 12; ++round) {
+      std::vector<double> roots;
+      const double alpha_max = step_bound(candidates.back(), &roots);
+      std::vector<Index> culprits;
+      if (alpha_max < 1) {
+        for (Index t = 0; t < nt_; ++t)
+          if (roots[t] < 1) culprits.push_back(t);
+      } else {
+        culprits = turned(trial(candidates.back(), std::min(1.0, 0.8 * alpha_max)).x);
+      }
+      if (culprits.empty()) break;
+      const std::vector<char> before = held_;
+      bool any = false;
+      for (Index t : culprits) any = hold_triangle(t) || any;
+      const Index added = static_cast<Index>(std::count(held_.begin(), held_.end(), 1) -
+                                             std::count(before.begin(), before.end(), 1));
+      if (!any || added > budget) {
+        held_ = before;
+        break;
+      }
+      budget -= added;
+      Direction pinned = solved();
+      if (candidates.size() == 1)
+        candidates.push_back(std::move(pinned));
+      else
+        candidates.back() = std::move(pinned);
+    }
+    return candidates;
+  }
+
+  // Whatever still climbs to first order is held: the direction is then a descent.
+  void descend(Direction& c) const {
+    if (c.slope < 0) return;
+    c.slope = 0;
+    for (Index i = 0; i < m_; ++i) {
+      const double rise = g_[setup_.movable[i]].dot(c.T_true[i] * c.d[i]);
+      if (rise > 0) {
+        c.d[i] = Vec2::Zero();
+        c.entered[i] = result_.where[i].triangle;
+      } else {
+        c.slope += rise;
+      }
+    }
+  }
+
+  // From 0.8 of the step that turns a chart triangle over (at most 1), halved until the energy
+  // falls by Armijo's rule; the vertices of slid triangles that would turn against the frame stay
+  // where they are and the rest take the step (until nothing turns: a triangle whose corners all
+  // stay is as it is now). The candidate reaching the lower energy wins.
+  bool line_search(const std::vector<Direction>& candidates, Trial& best, double& E_new) const {
+    bool accepted = false;
+    for (const Direction& c : candidates) {
+      if (!(c.slope < 0)) continue;
+      double alpha = std::min(1.0, 0.8 * step_bound(c, nullptr));
+      for (int halving = 0; halving < 40 && alpha > 0; ++halving, alpha *= 0.5) {
+        Direction part = c;
+        Trial t = trial(part, alpha);
+        for (std::vector<Index> bad = turned(t.x); !bad.empty() && part.slope < 0;
+             bad = turned(t.x))
+          for (Index q : bad)
+            for (Index v : tris_[q]) {
+              const Index i = setup_.movable_slot[v];
+              if (i < 0 || part.d[i].isZero(0)) continue;
+              part.slope -= g_[v].dot(part.T_true[i] * part.d[i]);
+              part.d[i] = Vec2::Zero();
+              t.uv[i] = result_.uv[i];
+              t.where[i] = result_.where[i];
+              t.x[v] = x_[v];
+            }
+        if (!(part.slope < 0)) continue;
+        const double e = held_rotation_energy(setup_, t.x, s_, R_, nullptr);
+        if (std::isfinite(e) && e < E_ && e <= E_ + 1e-4 * alpha * part.slope) {
+          if (!accepted || e < E_new) {
+            E_new = e;
+            best = std::move(t);
+          }
+          accepted = true;
+          break;
+        }
+      }
+    }
+    return accepted;
+  }
+
+  const ElasticSetup& setup_;
+  const Chart& chart_;
+  const std::vector<Triangle>& tris_;
+  const Index nt_;
+  const Index m_;
+  const Positions3& frame_;
+  const std::vector<Vec3>& normals_;
+  const double s_;
+  ElasticResult& result_;  // uv and where: the movable vertices' chart points so far
+  Positions3 x_;           // the slid patch (local ids)
+  Positions2 node_uv_;     // every chart node's point: movable ones follow the slide
+  std::vector<Mat32> jacobian_;  // the frame over each chart triangle
+  std::vector<char> on_vertex_;  // still on its own chart node
+  std::vector<Mat32> T_;         // the model's Jacobians this step
+  std::vector<char> held_;       // held this step
+  std::vector<int> switched_;    // model Jacobians changed this step
+  const Index hold_cap_;
+  StepSystem system_;
+  std::vector<Mat32> R_;  // the rotations of the current round
+  Positions3 g_;          // the held-rotation energy's gradient at x_
+  double E_ = 0;          // the held-rotation energy at x_
+};
+
 }  // namespace
 
 ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>& triangles,
@@ -448,8 +758,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   }
   const double s = setup.bind_area > 0 ? std::sqrt(frame_area / setup.bind_area) : 1.0;
   result.scale = s;
-  Positions3 x = frame;  // the slid patch (local ids)
-  result.energy_before = result.energy_after = arap_energy(setup, x, s, frame_normals);
+  result.energy_before = result.energy_after = arap_energy(setup, frame, s, frame_normals);
   if (!std::isfinite(result.energy_before) || !std::isfinite(s))
     throw Error(ErrorKind::Numeric, "the frame's elastic energy is not finite");
   // A frame that is the bind up to a rigid motion and a uniform scale has nothing to undo; its
@@ -458,266 +767,27 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     result.stop = "at rest";
     return result;
   }
-  std::vector<Mat32> jacobian(nt);
-  for (Index t = 0; t < nt; ++t) jacobian[t] = chart_jacobian(setup, frame, t);
-  std::vector<char> on_vertex(m, 1);
-  StepSystem system(setup);
-  Positions2 node_uv = chart.uv;  // every node's chart point: movable ones follow the slide
-  std::vector<Mat32> T(m);
-  std::vector<char> held(m);
-  std::vector<int> switched(m);
-  std::vector<Mat32> R;  // the rotations of the current round
-  Positions3 g;          // the held-rotation energy's gradient at x
-  double E = 0;          // the held-rotation energy at x
-
-  // A direction's true first-order change: each vertex moves with the Jacobian of the triangle
-  // it enters.
-  struct Direction {
-    Positions2 d;
-    std::vector<Index> entered;
-    std::vector<Mat32> T_true;
-    double slope = 0;  // true
-    double model = 0;  // with the model's Jacobians
-  };
-  const auto direction = [&](Positions2 d) {
-    Direction out;
-    out.d = std::move(d);
-    out.entered.resize(m);
-    out.T_true.resize(m);
-    for (Index i = 0; i < m; ++i) {
-      const Index v = setup.movable[i];
-      out.entered[i] = entered_triangle(chart, on_vertex[i] ? v : -1, result.uv[i],
-                                        result.where[i].triangle, out.d[i]);
-      out.T_true[i] = jacobian[out.entered[i]];
-      out.model += g[v].dot(T[i] * out.d[i]);
-      out.slope += g[v].dot(out.T_true[i] * out.d[i]);
-    }
-    return out;
-  };
-  // Where a step of `alpha` along `dir` puts the movable vertices, in the chart and on the frame.
-  struct Trial {
-    Positions2 uv;
-    std::vector<ChartPoint> where;
-    Positions3 x;
-  };
-  const auto trial = [&](const Direction& dir, double alpha) {
-    Trial t{result.uv, result.where, x};
-    for (Index i = 0; i < m; ++i) {
-      if (dir.d[i].isZero(0)) continue;
-      const Index v = setup.movable[i];
-      t.uv[i] = result.uv[i] + alpha * dir.d[i];
-      t.where[i] = locate_in_chart(chart, t.uv[i], dir.entered[i]);
-      t.x[v] = surface_point(frame, tris[t.where[i].triangle], t.where[i]);
-    }
-    return t;
-  };
-  // Slid triangles turned against (or flat on) the frame's own, where the frame's has area.
-  const auto turned = [&](const Positions3& y) {
-    std::vector<Index> out;
-    for (Index t = 0; t < nt; ++t) {
-      const Triangle& tri = tris[t];
-      if (frame_normals[t].isZero(0)) continue;
-      const Vec3 n = (y[tri[1]] - y[tri[0]]).cross(y[tri[2]] - y[tri[0]]);
-      if (!(n.dot(frame_normals[t]) > 0)) out.push_back(t);
-    }
-    return out;
-  };
-  const auto step_bound = [&](const Direction& dir, std::vector<double>* roots) {
-    Positions2 node_d(chart.uv.size(), Vec2::Zero());
-    for (Index i = 0; i < m; ++i) node_d[setup.movable[i]] = dir.d[i];
-    return max_step(setup, node_uv, node_d, roots);
-  };
-  // A vertex still on its chart vertex was modelled with its tangent plane's least-squares map;
-  // its chart step is the one that moves it, in the wedge that holds that step, as the model
-  // meant: the wedge's own map inverted on the model's 3D motion.
-  const auto redirected = [&](Index i, const Vec2& d) {
-    const Index v = setup.movable[i];
-    const Vec3 motion = T[i] * d;
-    Vec2 best = d;
-    double best_score = -INFINITY;
-    for (Index k = chart.corner_start[v]; k < chart.corner_start[v + 1]; ++k) {
-      const Index t = chart.corner_triangles[k];
-      const Triangle& tri = tris[t];
-      const int c = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-      const Mat32& Tk = jacobian[t];
-      const Eigen::Matrix2d A = Tk.transpose() * Tk;
-      if (!(std::abs(A.determinant()) > 0)) continue;
-      const Vec2 dk = A.inverse() * (Tk.transpose() * motion);
-      const Vec2 a = chart.uv[tri[(c + 1) % 3]] - chart.uv[v];
-      const Vec2 b = chart.uv[tri[(c + 2) % 3]] - chart.uv[v];
-      const double n = dk.norm();
-      if (!(n > 0)) continue;
-      const double score = std::min(cross2(a, dk) / (a.norm() * n), cross2(dk, b) / (b.norm() * n));
-      if (score > best_score) {
-        best_score = score;
-        best = dk;
-      }
-    }
-    return best;
-  };
-  const auto solved = [&]() {
-    Positions2 d;
-    if (!system.solve(T, held, g, d)) d.assign(m, Vec2::Zero());
-    for (Index i = 0; i < m; ++i)
-      if (on_vertex[i] && !held[i] && switched[i] == 0 && !d[i].isZero(0)) d[i] = redirected(i, d[i]);
-    return direction(std::move(d));
-  };
-  // Holds every movable corner of triangle t; false when none was free.
-  const auto hold_triangle = [&](Index t) {
-    bool any = false;
-    for (Index v : tris[t]) {
-      const Index i = setup.movable_slot[v];
-      if (i >= 0 && !held[i]) held[i] = any = true;
-    }
-    return any;
-  };
-  const Index hold_cap = std::max<Index>(16, m / 10);
-
-  // One step of the global solve: Gauss-Newton in the chart, made a descent and fold-free.
-  // False when no step lowers the energy.
-  const auto step = [&]() {
-    for (Index i = 0; i < m; ++i)
-      T[i] = on_vertex[i] ? vertex_jacobian(setup, frame, frame_normals, setup.movable[i])
-                          : jacobian[result.where[i].triangle];
-    std::fill(held.begin(), held.end(), 0);
-    std::fill(switched.begin(), switched.end(), 0);
-    Direction dir = solved();
-    // Model and truth disagree where a vertex sits on a chart vertex or edge, and Phi bends
-    // there: a vertex whose true first-order change goes up is given the Jacobian of the triangle
-    // it would enter, and re-solved; after three such changes it is held for this step.
-    for (int round = 0; dir.slope > 0.5 * dir.model && round < 12; ++round) {
-      bool changed = false;
-      for (Index i = 0; i < m; ++i) {
-        const Index v = setup.movable[i];
-        if (held[i] || !(g[v].dot(dir.T_true[i] * dir.d[i]) > 0)) continue;
-        if (switched[i] < 3 && !T[i].isApprox(dir.T_true[i], 0)) {
-          T[i] = dir.T_true[i];
-          ++switched[i];
-        } else {
-          held[i] = 1;
-        }
-        changed = true;
-      }
-      if (!changed) break;
-      dir = solved();
-    }
-    // A step that a few triangles cut short (about to turn over in the chart, or against the
-    // frame) would leave the rest of the patch stuck: those triangles' vertices are held and the
-    // step solved again, within a budget of held vertices; both steps are then tried.
-    std::vector<Direction> candidates{dir};
-    Index budget = hold_cap;
-    for (int round = 0; round < 12; ++round) {
-      std::vector<double> roots;
-      const double alpha_max = step_bound(candidates.back(), &roots);
-      std::vector<Index> culprits;
-      if (alpha_max < 1) {
-        for (Index t = 0; t < nt; ++t)
-          if (roots[t] < 1) culprits.push_back(t);
-      } else {
-        culprits = turned(trial(candidates.back(), std::min(1.0, 0.8 * alpha_max)).x);
-      }
-      if (culprits.empty()) break;
-      const std::vector<char> before = held;
-      bool any = false;
-      for (Index t : culprits) any = hold_triangle(t) || any;
-      const Index added = static_cast<Index>(std::count(held.begin(), held.end(), 1) -
-                                             std::count(before.begin(), before.end(), 1));
-      if (!any || added > budget) {
-        held = before;
-        break;
-      }
-      budget -= added;
-      Direction pinned = solved();
-      if (candidates.size() == 1)
-        candidates.push_back(std::move(pinned));
-      else
-        candidates.back() = std::move(pinned);
-    }
-    // Whatever still climbs is held: each candidate is then a descent of the true energy.
-    for (Direction& c : candidates)
-      if (!(c.slope < 0)) {
-        c.slope = 0;
-        for (Index i = 0; i < m; ++i) {
-          const double rise = g[setup.movable[i]].dot(c.T_true[i] * c.d[i]);
-          if (rise > 0) {
-            c.d[i] = Vec2::Zero();
-            c.entered[i] = result.where[i].triangle;
-          } else {
-            c.slope += rise;
-          }
-        }
-      }
-    result.held += static_cast<int>(std::count(held.begin(), held.end(), 1));
-    // Line search on each candidate: from 0.8 of the step that turns a chart triangle over (at
-    // most 1), halved until the energy falls by Armijo's rule; the vertices of slid triangles
-    // that would turn against the frame stay where they are and the rest take the step (until
-    // nothing turns: a triangle whose corners all stay is as it is now). The lower energy wins.
-    bool accepted = false;
-    double E_new = E;
-    Trial best;
-    for (const Direction& c : candidates) {
-      if (!(c.slope < 0)) continue;
-      double alpha = std::min(1.0, 0.8 * step_bound(c, nullptr));
-      for (int halving = 0; halving < 40 && alpha > 0; ++halving, alpha *= 0.5) {
-        Direction part = c;
-        Trial t = trial(part, alpha);
-        for (std::vector<Index> bad = turned(t.x); !bad.empty() && part.slope < 0;
-             bad = turned(t.x))
-          for (Index q : bad)
-            for (Index v : tris[q]) {
-              const Index i = setup.movable_slot[v];
-              if (i < 0 || part.d[i].isZero(0)) continue;
-              part.slope -= g[v].dot(part.T_true[i] * part.d[i]);
-              part.d[i] = Vec2::Zero();
-              t.uv[i] = result.uv[i];
-              t.where[i] = result.where[i];
-              t.x[v] = x[v];
-            }
-        if (!(part.slope < 0)) continue;
-        const double e = held_rotation_energy(setup, t.x, s, R, nullptr);
-        if (std::isfinite(e) && e < E && e <= E + 1e-4 * alpha * part.slope) {
-          if (!accepted || e < E_new) {
-            E_new = e;
-            best = std::move(t);
-          }
-          accepted = true;
-          break;
-        }
-      }
-    }
-    if (!accepted) return false;
-    for (Index i = 0; i < m; ++i) {
-      if (best.uv[i] == result.uv[i]) continue;
-      result.uv[i] = best.uv[i];
-      result.where[i] = best.where[i];
-      node_uv[setup.movable[i]] = best.uv[i];
-      on_vertex[i] = 0;
-    }
-    x = std::move(best.x);
-    return true;
-  };
-
   // ARAP's local/global alternation, a fixed number of rounds: fit each triangle's rotation to
   // the slid patch (at first the frame), then lower the energy with those rotations held, on the
   // surface, to convergence. Each round's result moves smoothly with the frame; full ARAP (many
   // rounds) has minima that jump from one frame to the next.
+  Relaxation relaxation(setup, frame, frame_normals, s, result);
   result.stop = "converged";
   for (int round = 0; round < options.rotation_fits; ++round) {
-    R = fitted_rotations(setup, x, frame_normals);
-    E = held_rotation_energy(setup, x, s, R, &g);
-    const double E_round = E;
+    relaxation.fit_rotations();
+    const double E_round = relaxation.energy();
     int small_steps = 0;
     int it = 0;
     for (; it < options.max_iterations; ++it) {
-      const double E_old = E;
-      if (!step()) break;
-      E = held_rotation_energy(setup, x, s, R, &g);
+      const double E_old = relaxation.energy();
+      if (!relaxation.step()) break;
       ++result.iterations;
-      small_steps = E_old - E < options.tolerance * E_round ? small_steps + 1 : 0;
+      small_steps = E_old - relaxation.energy() < options.tolerance * E_round ? small_steps + 1 : 0;
       if (small_steps >= 2) break;
     }
     if (it == options.max_iterations) result.stop = "limit";
   }
+  const Positions3& x = relaxation.positions();
   // The ARAP energy cannot rise: each round starts where the last ended, with the rotations that
   // minimise it there, and only lowers it. Round-off aside; a frame whose relaxation gained
   // nothing comes back unchanged.
