@@ -4,8 +4,9 @@
 A 12 x 12 quad grid (2 x 2 units in the xy-plane) is bent by 110 degrees about the line x = 1
 by two-bone linear blend skinning (bone-2 weight = smoothstep over x in [0.7, 1.3]), which
 shortens the bars across the bend, and a bulge (a Gaussian bump of height 0.5 at (0.6, 1.3))
-stretches the bars around it; the whole grid is the patch. skinslide slides the frame and draws
-the preview at 512 pixels: the frame net (orange) swells under the bulge and shrinks at the bend.
+stretches the bars around it; the whole grid is the patch. skinslide slides the frame with
+--method paper (the nets this picture explains) and draws the preview at 512 pixels: the frame
+net (orange) swells under the bulge and shrinks at the bend.
 
     python3 scripts/make_preview_example.py path/to/skinslide data/preview_example.png
 
@@ -65,8 +66,8 @@ def main():
         (d / "frames").mkdir()
         write_obj(d / "frames" / "bent.0001.obj", [bend(p) for p in bind])
         (d / "patch.txt").write_text("0-%d\n" % (N * N - 1))
-        subprocess.run([skinslide, "-q", "--patch", str(d / "patch.txt"), str(d / "bind.obj"),
-                        str(d / "frames" / "bent.0001.obj"), "-o", str(d / "slid"),
+        subprocess.run([skinslide, "-q", "--method", "paper", "--patch", str(d / "patch.txt"),
+                        str(d / "bind.obj"), str(d / "frames" / "bent.0001.obj"), "-o", str(d / "slid"),
                         "--preview", str(d / "preview"), "--preview-size", str(PREVIEW)],
                        check=True)
         shutil.copyfile(d / "preview" / "bent.0001.patch000.png", out)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Measures every --density x --holes setting on the sample cases and the ICT face.
+"""Measures every --density x --holes setting of --method paper on the sample cases and the ICT face.
 
     scripts/measure_modes.py SKINSLIDE [--quick]
 
@@ -48,7 +48,7 @@ def main(argv):
         for density in ("paper", "inverse", "uniform"):
             for holes in ("free", "fill"):
                 out = os.path.join(tmp, name, density + "_" + holes)
-                subprocess.run([binary, "-q", "--density", density, "--holes", holes, "--patch", patch,
+                subprocess.run([binary, "-q", "--method", "paper", "--density", density, "--holes", holes, "--patch", patch,
                                 bind] + frames + ["-o", out], check=True)
                 flips, ratios, restor = 0, [], []
                 for f in frames:
