@@ -4,6 +4,8 @@
 # and the ICT face of ../shared/data (neutral = bind, four expressions = frames).
 #
 #   scripts/bench.sh [-s "10000 100000 1000000"] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict]
+#                    [--peers | --peers-only] [--peer-sizes "40000 100000 490000"]
+#                    [--peer-frames N] [--peer-repeats N]
 #   (FRAMES frames per case, default 20; FRAMES_BIG, default 4, from 400k vertices on)
 #
 # Per case, medians over RUNS runs:
@@ -16,6 +18,23 @@
 #     written unchanged).
 # Every time is also given as a ratio to the I/O floor's time per frame (x floor).
 # Prints a Markdown table; BENCH_DIR keeps the generated cases (default: a temporary folder).
+#
+# --peers: also a table against the peer a pipeline would use instead, Blender's Corrective Smooth
+# modifier (delta mush; Debian's blender, installed with apt-get when missing; a benchmark tool
+# only), on the synthetic cases of --peer-sizes (default: those of -s under 1M vertices; cases are
+# generated as above). Per case, from the same run:
+#   - Corrective Smooth, 10 iterations, one thread (blender -t 1), rest = the bind, vertex group =
+#     the patch's free vertices, on the case's first frame (scripts/corrective_smooth.py `time`):
+#     warm evaluations as in playback (the frame is an animated shape key, scene.frame_set per
+#     time, the modifier's rest cache kept), medians of --peer-repeats (default 9) evaluations of
+#     the scene; the same with the modifier off gives the overhead (shape key mix, mesh copy), and
+#     "modifier" is the difference; "cold" is the first evaluation (the rest's deltas computed);
+#     process CPU ms;
+#   - skinslide's elastic method (the command's default) on the same frame, given --peer-frames
+#     times (default 1; 0: Corrective Smooth alone): the `relax` stage of tests/bench/bench_stages.cpp (-m elastic), thread
+#     CPU ms, and its `slide_frame` (relax plus the transfer of its result), both medians;
+#   - the ratio elastic relax / Corrective Smooth's modifier.
+# --peers-only: the peer table alone (no stage, command or ICT runs).
 set -euo pipefail
 export LC_ALL=C  # '.' decimal points in $EPOCHREALTIME and awk
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -24,6 +43,12 @@ frames=20
 frames_big=4
 runs=3
 ict=1
+peers=0
+peers_only=0
+peer_sizes=
+peer_frames=1
+peer_repeats=9
+usage="usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict] [--peers | --peers-only] [--peer-sizes SIZES] [--peer-frames N] [--peer-repeats N]"
 while [ $# -gt 0 ]; do
   case $1 in
     -s) sizes=$2; shift 2 ;;
@@ -31,7 +56,12 @@ while [ $# -gt 0 ]; do
     -F) frames_big=$2; shift 2 ;;
     -r) runs=$2; shift 2 ;;
     --no-ict) ict=0; shift ;;
-    *) echo "usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict]" >&2; exit 2 ;;
+    --peers) peers=1; shift ;;
+    --peers-only) peers=1; peers_only=1; shift ;;
+    --peer-sizes) peer_sizes=$2; shift 2 ;;
+    --peer-frames) peer_frames=$2; shift 2 ;;
+    --peer-repeats) peer_repeats=$2; shift 2 ;;
+    *) echo "$usage" >&2; exit 2 ;;
   esac
 done
 
@@ -46,6 +76,22 @@ if [ -n "${BENCH_DIR:-}" ]; then
 else
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
+fi
+
+blender=${BLENDER:-blender}
+if [ "$peers" = 1 ]; then
+  if [ -z "$peer_sizes" ]; then
+    for n in $sizes; do [ "$n" -lt 1000000 ] && peer_sizes="$peer_sizes $n"; done
+  fi
+  if ! command -v "$blender" >/dev/null; then
+    echo "bench: --peers needs Blender: apt-get install -y blender (large)" >&2
+    if ! { apt-get install -y blender || { apt-get update && apt-get install -y blender; }; } \
+      >"$work/apt-blender.log" 2>&1 || ! command -v "$blender" >/dev/null; then
+      tail -n 20 "$work/apt-blender.log" >&2
+      echo "bench: could not install blender" >&2
+      exit 1
+    fi
+  fi
 fi
 
 median() { sort -g | awk '{v[NR] = $1} END {if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
@@ -113,29 +159,68 @@ bench() {
   rm -rf "$out"
 }
 
-names=()
-for n in $sizes; do
-  f=$frames
+# gen_case N: the synthetic case of N vertices in $work/caseN (kept when it is there); sets dir
+gen_case() {
+  local n=$1 f=$frames
   [ "$n" -ge 400000 ] && f=$frames_big
   dir=$work/case$n
   [ -f "$dir/bind.obj" ] && [ "$(ls "$dir/frames" | wc -l)" -eq "$f" ] || {
     rm -rf "$dir"
     "$gen" "$dir" "$n" "$f" >/dev/null
   }
+}
+
+# peer N: Corrective Smooth and the elastic method on case N's first frame -> $work/peerN.result
+peer() {
+  local n=$1 dir=$work/case$1 res=$work/peer$1.result
+  local frame=$dir/frames/f.0001.obj
+  echo "bench: peers, synthetic $n (Corrective Smooth, then skinslide elastic x$peer_frames)" >&2
+  if ! "$blender" -b --factory-startup -noaudio --python-exit-code 1 -t 1 \
+    --python "$root/scripts/corrective_smooth.py" -- time --bind "$dir/bind.obj" \
+    --patch "$dir/patch.txt" --frame "$frame" --repeats "$peer_repeats" >"$work/peer$n.cs.log" 2>&1; then
+    tail -n 20 "$work/peer$n.cs.log" >&2
+    echo "bench: Corrective Smooth failed on synthetic $n" >&2
+    exit 1
+  fi
+  grep '^cs_' "$work/peer$n.cs.log" | grep -v '^cs_info' >"$res"
+  local fl=() k
+  [ "$peer_frames" -gt 0 ] || return 0  # Corrective Smooth alone
+  for k in $(seq "$peer_frames"); do fl+=("$frame"); done
+  "$stages" -m elastic -o "$work/peer_out" "$dir/bind.obj" "$dir/patch.txt" "${fl[@]}" \
+    >"$work/peer$n.stages"
+  rm -rf "$work/peer_out"
+  for k in relax slide_frame elastic_iterations patch_vertices mesh_vertices bind_setup; do
+    echo "elastic_${k#elastic_} $(awk -v k="$k" '$1 == k {print $2}' "$work/peer$n.stages")" >>"$res"
+  done
+}
+
+names=()
+[ "$peers_only" = 1 ] && sizes=
+for n in $sizes; do
+  gen_case "$n"
   bench "synthetic $n" "$dir/bind.obj" "$dir/patch.txt" "$dir"/frames/*.obj
   names+=("synthetic $n")
 done
 ictdir=$root/../shared/data/obj/ict-facekit
-if [ "$ict" = 1 ] && [ -f "$ictdir/generic_neutral_mesh.obj" ]; then
+if [ "$ict" = 1 ] && [ "$peers_only" = 0 ] && [ -f "$ictdir/generic_neutral_mesh.obj" ]; then
   echo "0-9229  # the face with mouth and eye holes" >"$work/ict_patch.txt"
   bench "ICT face" "$ictdir/generic_neutral_mesh.obj" "$work/ict_patch.txt" \
     "$ictdir"/{jawOpen,mouthSmile_L,eyeBlink_L,browInnerUp_L}.obj
   names+=("ICT face")
 fi
 
+peer_names=()
+if [ "$peers" = 1 ]; then
+  for n in $peer_sizes; do
+    gen_case "$n"
+    peer "$n"
+    peer_names+=("$n")
+  done
+fi
+
 echo
 echo "$(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-python3 - "$work" "${names[@]}" <<'EOF'
+[ ${#names[@]} -eq 0 ] || python3 - "$work" "${names[@]}" <<'EOF'
 import sys
 work, names = sys.argv[1], sys.argv[2:]
 rows = []
@@ -173,3 +258,33 @@ print("\nStage times: median CPU ms of one thread per frame; (Nx) = N times the 
       "frame (--no-slide, -j1). fps: frames/second of the whole command (bind set-up included), wall clock; "
       "(frames alone): the speed-up of the frame loop, after the set-up.")
 EOF
+if [ "$peers" = 1 ]; then
+  echo
+  echo "Peer: $("$blender" -b --factory-startup --version 2>/dev/null | grep -m1 '^Blender' || echo 'Blender ?'), Corrective Smooth, 10 iterations, -t 1"
+  python3 - "$work" "${peer_names[@]}" <<'EOF'
+import sys
+work, names = sys.argv[1], sys.argv[2:]
+
+def ms(x):
+    return f"{x:.0f}" if x >= 100 else f"{x:.1f}" if x >= 1 else f"{x:.2f}"
+
+print("\n| case | mesh / free vertices | Corrective Smooth ms: frame eval (overhead) | modifier | cold (first eval) "
+      "| skinslide elastic ms: relax (iterations) | slide_frame | elastic relax / CS modifier |")
+print("|" + "---|" * 8)
+for n in names:
+    r = {}
+    for line in open(f"{work}/peer{n}.result"):
+        k, v = line.split()
+        r[k] = float(v)
+    el = ("| n/a | n/a | n/a |" if "elastic_relax" not in r else
+          f"| {ms(r['elastic_relax'])} ({r['elastic_iterations']:.0f}) | {ms(r['elastic_slide_frame'])} "
+          f"| {r['elastic_relax'] / r['cs_modifier_ms']:.0f}x |")
+    print(f"| synthetic {n} | {r['cs_vertices']:.0f} / {r['cs_free_vertices']:.0f} "
+          f"| {ms(r['cs_frame_ms'])} ({ms(r['cs_overhead_ms'])}) | {ms(r['cs_modifier_ms'])} | {ms(r['cs_cold_ms'])} "
+          + el)
+print("\nCPU ms per frame, one thread, the case's first frame. Corrective Smooth: medians of warm scene "
+      "evaluations (its rest cache kept, as in playback); modifier = frame eval minus the same evaluation "
+      "with the modifier off (overhead: shape key mix, mesh copy). skinslide: the elastic method's relax stage "
+      "(bench_stages -m elastic), slide_frame = relax + the transfer of its result.")
+EOF
+fi
