@@ -1,45 +1,25 @@
 // skinslide: skin sliding after any deformer (Yang & Zhang 2010), a batch command.
-// Reads the bind mesh and the patch files once, then slides every frame (in parallel across
-// frames only, so the bytes written never depend on the thread count) and writes each slid frame
-// as an edited copy of the frame's own file.
+// The command line only: CLI11 options -> RunOptions -> run() (pipeline/run.h, which reads the
+// bind and the patches once, then slides every frame) -> exit code. What the run tells goes to
+// stderr here: a line per frame in frame order, or a progress line on a terminal.
 
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <cctype>
-#include <chrono>
 #include <clocale>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <set>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "core/allocator.h"
-#include "core/cores.h"
 #include "core/error.h"
 #include "core/version.h"
-#include "io/atomic_write.h"
-#include "io/gltf.h"
-#include "io/gltf_weights.h"
-#include "io/mesh_file.h"
-#include "io/number_format.h"
-#include "io/obj_write.h"
-#include "io/obj_read.h"
-#include "io/patch_file.h"
-#include "io/vertex_list.h"
-#include "pipeline/bind_setup.h"
-#include "pipeline/frame_ranges.h"
-#include "pipeline/dumps.h"
-#include "pipeline/rig_frames.h"
-#include "pipeline/report.h"
-#include "pipeline/slide_frame.h"
+#include "pipeline/run.h"
 #include "progress.h"
 
 namespace fs = std::filesystem;
@@ -91,147 +71,22 @@ struct CliOptions {
   bool report_no_timings = false;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// "a,b,c,d" -> four vertex ids.
-std::array<Index, 4> parse_corners(const std::string& text) {
-  std::array<Index, 4> c{};
-  size_t pos = 0;
-  for (int j = 0; j < 4; ++j) {
-    const size_t comma = j < 3 ? text.find(',', pos) : text.size();
-    const auto id = comma == std::string::npos
-                        ? std::nullopt
-                        : parse_integer(std::string_view(text).substr(pos, comma - pos));
-    if (!id || *id < 0 || *id > 2147483647LL || (j < 3 && comma == text.size()))
-      throw Error(ErrorKind::Usage, "--corners " + text +
-                                        ": expected four vertex ids a,b,c,d (the outer loop's "
-                                        "corners in walking order)");
-    c[j] = static_cast<Index>(*id);
-    pos = comma + 1;
-  }
-  return c;
-}
-
-// The controls read from their files (after the bind: ids are checked against it).
-SlideControls slide_controls(const CliOptions& o, const MeshFile& bind, RunReport& report) {
-  SlideControls c;
-  const Index nv = bind.mesh.vertex_count();
-  if (!o.weights.empty()) {
-    c.weight = read_weights(o.weights, nv);
-    report.weights = o.weights;
-  } else if (!o.weights_color.empty()) {
-    if (!bind.obj)
-      throw Error(ErrorKind::Usage,
-                  "--weights-from-obj-color needs an OBJ bind; " + o.bind + " is not one");
-    const int channel = o.weights_color == "r" ? 0 : o.weights_color == "g" ? 1 : 2;
-    c.weight = obj_color_weights(o.bind, *bind.obj, channel);
-    report.weights = o.bind + " (vertex colour " + o.weights_color + ")";
-  } else if (!o.weights_attribute.empty()) {
-    c.weight = gltf_attribute_weights(bind, o.weights_attribute);
-    report.weights = o.bind + " (glTF attribute " + o.weights_attribute + ")";
-  }
-  c.strength = o.strength;
-  report.strength = o.strength;
-  if (!o.pin.empty()) {
-    c.pins = read_vertex_list(o.pin, nv);
-    report.pins = o.pin;
-    report.pins_requested = static_cast<Index>(c.pins.size());
-  }
-  for (const std::string& t : o.corners) c.corners.push_back(parse_corners(t));
-  for (int v : o.outer_loop_vertices) c.outer_loop_vertices.push_back(v);
-  return c;
-}
-
-std::string fmt(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
-
-// Same file (by identity when it exists, else by normalised path).
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
-}
-
-// Output paths, one per frame: DIR/<frame file name>. Refuses an output that is an input and two
-// frames that would write the same output, before any work is done.
-std::vector<std::string> output_paths(const CliOptions& o) {
-  std::vector<std::string> inputs = o.frames;
-  inputs.push_back(o.bind);
-  inputs.insert(inputs.end(), o.patches.begin(), o.patches.end());
-  for (const std::string* f : {&o.weights, &o.pin})
-    if (!f->empty()) inputs.push_back(*f);
-  std::vector<std::string> out;
-  std::set<std::string> names;
-  for (const std::string& f : o.frames) {
-    const std::string name = fs::path(f).filename().string();
-    if (!names.insert(name).second)
-      throw Error(ErrorKind::Usage, "two frames are named '" + name + "'; their outputs in " +
-                                        o.output + " would collide");
-    const fs::path target = fs::path(o.output) / name;
-    for (const std::string& in : inputs)
-      if (same_file(target, in))
-        throw Error(ErrorKind::Usage, "output " + target.string() + " would overwrite input " + in +
-                                          "; choose another --output folder");
-    out.push_back(target.string());
-  }
-  if (!o.report.empty()) {
-    for (const std::string& in : inputs)
-      if (same_file(o.report, in))
-        throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);
-    for (const std::string& f : out)
-      if (same_file(o.report, f))
-        throw Error(ErrorKind::Usage, "--report " + o.report + " is also the output of a frame");
-  }
-  return out;
-}
-
-void make_output_dir(const std::string& dir) {
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw Error(ErrorKind::Output, dir + ": cannot write: exists and is not a folder");
-  fs::create_directories(dir, ec);
-  if (ec)
-    throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
-}
-
-// Indices of the frames that --frames selects, in list order, by the frame number in each
-// output's file name (an OBJ frame's own name; a rig frame's <character>.<frame>).
-std::vector<size_t> chosen_frames(const std::vector<FrameRange>& ranges,
-                                  const std::vector<std::string>& outputs,
-                                  const std::vector<std::string>& labels, const std::string& spec) {
-  std::vector<size_t> chosen;
-  if (ranges.empty()) {
-    for (size_t i = 0; i < outputs.size(); ++i) chosen.push_back(i);
-    return chosen;
-  }
-  long long lowest = 0, highest = 0;
-  for (size_t i = 0; i < outputs.size(); ++i) {
-    const auto n = frame_number(outputs[i]);
-    if (!n)
-      throw Error(ErrorKind::Usage, "--frames: " + labels[i] +
-                                        " has no frame number in its file name (expected e.g. "
-                                        "name.0042.obj); drop --frames or rename the frames");
-    lowest = i == 0 ? *n : std::min(lowest, *n);
-    highest = i == 0 ? *n : std::max(highest, *n);
-    // A range past the frames present selects what there is: a farm's last chunk may run past
-    // the end of the shot.
-    if (in_frame_ranges(ranges, *n)) chosen.push_back(i);
-  }
-  if (chosen.empty())
-    throw Error(ErrorKind::Usage, "--frames " + spec + " selects none of the " +
-                                      std::to_string(outputs.size()) + " frames (numbered " +
-                                      std::to_string(lowest) + " to " + std::to_string(highest) +
-                                      ")");
-  return chosen;
-}
-
-SlideOptions slide_options(const CliOptions& o) {
-  SlideOptions s;
+// The command line's options as the pipeline's. \throw Error(Usage) on an unknown method name.
+RunOptions run_options(const CliOptions& o) {
+  RunOptions r;
+  r.bind = o.bind;
+  r.patches = o.patches;
+  r.frames = o.frames;
+  r.mesh = o.mesh;
+  if (o.rig) r.rig = RigOptions{o.animation, o.fps};
+  r.rig_format = o.format;
+  r.output = o.output;
+  r.dump_dir = o.dump_dir;
+  r.preview_dir = o.preview_dir;
+  r.preview_size = o.preview_size;
+  r.report = o.report;
+  r.report_timings = !o.report_no_timings;
+  SlideOptions& s = r.slide;
   s.method = parse_method(o.method);
   s.elastic.rotation_fits = o.rotation_fits;
   s.elastic.max_iterations = o.max_iterations;
@@ -244,361 +99,53 @@ SlideOptions slide_options(const CliOptions& o) {
   s.cg_max_iterations = o.cg_max_iterations;
   s.locate = parse_locate(o.locate);
   s.lookup_size = o.lookup_size;
-  return s;
+  r.weights = o.weights;
+  r.weights_from_obj_color = o.weights_color;
+  r.weights_from_gltf_attribute = o.weights_attribute;
+  r.strength = o.strength;
+  r.pin = o.pin;
+  r.corners = o.corners;
+  r.outer_loop_vertices.assign(o.outer_loop_vertices.begin(), o.outer_loop_vertices.end());
+  r.threads = o.threads;
+  r.frame_ranges = o.frame_ranges;
+  r.keep_going = o.keep_going;
+  r.no_slide = o.no_slide;
+  return r;
 }
 
-struct FrameSummary {
-  int fallbacks = 0;
-  double max_slide = 0;
-};
-
-FrameSummary summarise(const FrameResult& r) {
-  FrameSummary s;
-  for (const PatchFrameReport& p : r.patches) {
-    s.fallbacks += p.located_fallback;
-    s.max_slide = std::max(s.max_slide, p.max_slide);
-  }
-  return s;
-}
-
-std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
-                                      const FrameResult& result, const std::string& frame_path,
-                                      const std::string& out_path);
-
-// The report's record of one frame: its figures, not its nets.
-void record_frame(ReportFrame& record, const std::string& source, const std::string& out_path,
-                  double read_seconds, double write_seconds, const FrameResult& result) {
-  record.path = source;
-  record.output = out_path;
-  record.read_seconds = read_seconds;
-  record.write_seconds = write_seconds;
-  record.patches = result.patches;
-  for (PatchFrameReport& r : record.patches) {
-    r.frame_net = {};
-    r.id_image = {};
-  }
-}
-
-// slide_frame, with the frame named in its errors.
-FrameResult slide_named(const BindSetup& setup, const CliOptions& o, const Positions3& positions,
-                        const std::string& name) {
-  try {
-    return slide_frame(setup, positions,
-                       {.id_image = !o.dump_dir.empty(), .edge_spread = !o.report.empty()});
-  } catch (const Error& e) {
-    throw Error(e.kind(), name + ": " + e.what());
-  }
-}
-
-// A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
-// so the slid frame appears only once everything of its frame is written.
-void write_frame_pictures(const BindSetup& setup, const CliOptions& o,
-                          const std::string& named_after, const Positions3& frame_positions,
-                          const FrameResult& result) {
-  DumpOptions dump_options;
-  dump_options.preview_size = o.preview_size;
-  if (!o.dump_dir.empty())
-    write_frame_dumps(o.dump_dir, named_after, setup, frame_positions, result.patches,
-                      dump_options);
-  if (!o.preview_dir.empty())
-    write_previews(o.preview_dir, named_after, setup, result.patches, dump_options);
-}
-
-// Reads, checks, slides and writes one frame; returns the log lines for it.
-std::vector<std::string> run_frame(const BindSetup& setup, const MeshFile& bind,
-                                   const CliOptions& o, const std::string& frame_path,
-                                   const std::string& out_path, ReportFrame* record) {
-  auto t0 = std::chrono::steady_clock::now();
-  MeshFile frame = read_mesh_file(frame_path, {o.mesh});
-  require_same_topology(bind, frame);
-  release_faces(frame);
-  const double read_seconds = seconds_since(t0);
-  if (o.no_slide) {
-    write_slid_mesh_file(frame, SlidVertices{}, out_path);
-    return {"skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path};
-  }
-  const FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
-  write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
-  t0 = std::chrono::steady_clock::now();
-  write_slid_mesh_file(frame, result.slid, out_path);
-  if (record) record_frame(*record, frame_path, out_path, read_seconds, seconds_since(t0), result);
-  return frame_report(setup, o, result, frame_path, out_path);
-}
-
-// Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB.
-std::vector<std::string> run_rig_frame(const BindSetup& setup, const MeshFile& character,
-                                       const RigClip& clip, const CliOptions& o, size_t k,
-                                       const std::string& out_path, ReportFrame* record) {
-  const std::string label = clip.names[k] + " (t = " + fmt(clip.times[k]) + " s)";
-  auto t0 = std::chrono::steady_clock::now();
-  const MeshFile frame = rig_frame(character, clip, k);
-  const double pose_seconds = seconds_since(t0);
-  const FrameResult result = slide_named(setup, o, frame.mesh.positions, label);
-  write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
-  t0 = std::chrono::steady_clock::now();
-  if (o.format == "obj")
-    write_file_atomic(out_path, obj_text(frame.mesh, apply_slide(frame.mesh.positions, result.slid),
-                                         character.path + ", " + label + ", slid"));
-  else
-    write_gltf_file(frame, result.slid, out_path);
-  if (record) record_frame(*record, label, out_path, pose_seconds, seconds_since(t0), result);
-  return frame_report(setup, o, result, label, out_path);
-}
-
-std::string solver_label(FrameNetMethod method, int iterations) {
-  switch (method) {
-    case FrameNetMethod::Cholesky:
-      return "Cholesky";
-    case FrameNetMethod::Cg:
-      return "CG " + std::to_string(iterations) + " it";
-    case FrameNetMethod::Multigrid:
-      return "multigrid " + std::to_string(iterations) + " it";
-  }
-  return "?";
-}
-
-// The frame's solvers, each once, in patch order; an iterative one with its most iterations.
-std::string solvers_used(const BindSetup& setup, const FrameResult& result) {
-  std::vector<std::pair<FrameNetMethod, int>> used;
-  for (size_t p = 0; p < result.patches.size(); ++p) {
-    if (setup.patches[p].skipped) continue;
-    const FrameNetMethod m = setup.patches[p].solver->method();
-    auto it = std::find_if(used.begin(), used.end(), [&](const auto& u) { return u.first == m; });
-    if (it == used.end()) it = used.insert(used.end(), {m, 0});
-    it->second = std::max(it->second, result.patches[p].cg_iterations);
-  }
-  if (used.empty()) return "no frame net";
-  std::string text;
-  for (const auto& [method, iterations] : used)
-    text += (text.empty() ? "" : " + ") + solver_label(method, iterations);
-  return text;
-}
-
-// One patch of an elastic frame, for -v.
-std::string elastic_patch_line(const PatchFrameReport& r) {
-  return "elastic " + std::to_string(r.iterations) + " it (" + r.stop + "), energy " +
-         fmt(r.energy_before) + " -> " + fmt(r.energy_after) + ", held " +
-         std::to_string(r.held) + ", flips " + std::to_string(r.slid_flips) + ", slide max " +
-         fmt(r.max_slide) + " mean " + fmt(r.mean_slide);
-}
-
-// The elastic frame's summary: most steps, and the energy left as a share of the frame's.
-std::string elastic_summary(const BindSetup& setup, const FrameResult& result) {
-  int iterations = 0, flips = 0;
-  double before = 0, after = 0;
-  for (size_t p = 0; p < result.patches.size(); ++p) {
-    if (setup.patches[p].skipped) continue;
-    const PatchFrameReport& r = result.patches[p];
-    iterations = std::max(iterations, r.iterations);
-    flips += r.slid_flips;
-    before += r.energy_before;
-    after += r.energy_after;
-  }
-  return "elastic " + std::to_string(iterations) + " it, energy left " +
-         (before > 0 ? fmt(100 * after / before) + "%" : std::string("0")) + ", flips " +
-         std::to_string(flips);
-}
-
-std::vector<std::string> frame_report(const BindSetup& setup, const CliOptions& o,
-                                      const FrameResult& result, const std::string& frame_path,
-                                      const std::string& out_path) {
-  const FrameSummary s = summarise(result);
-  const bool elastic = setup.options.method == SlideMethod::Elastic;
-  std::vector<std::string> lines;
-  lines.push_back("skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
-                  " patches, " +
-                  (elastic ? elastic_summary(setup, result) : solvers_used(setup, result)) +
-                  ", max slide " + fmt(s.max_slide) +
-                  (elastic ? std::string() : ", " + std::to_string(s.fallbacks) + " fallbacks") +
-                  " -> " + out_path);
-  if (o.verbose)
-    for (size_t p = 0; p < result.patches.size(); ++p) {
-      const PatchFrameReport& r = result.patches[p];
-      const PatchNet& n = setup.patches[p];
-      std::string line;
-      if (n.skipped)
-        line = "skipped (all vertices on loops)";
-      else if (elastic)
-        line = elastic_patch_line(r);
-      else
-        line = solver_label(n.solver->method(), r.cg_iterations) +
-               (n.solver->method() == FrameNetMethod::Cholesky
-                    ? ""
-                    : ", residual " + fmt(r.cg_residual)) +
-               (r.direct_solve ? " (solved directly)" : "") + ", located " +
-               std::to_string(r.located_in_image) + " + " + std::to_string(r.located_fallback) +
-               " fallback, net flips " + std::to_string(r.frame_net_flips) + ", slide max " +
-               fmt(r.max_slide) + " mean " + fmt(r.mean_slide);
-      lines.push_back("  patch " + std::to_string(p) + ": " + line);
-    }
-  return lines;
-}
-
-int run(const CliOptions& o) {
+// Runs the pipeline, printing what it tells to stderr as -q/-v ask; returns the exit code.
+int run_and_print(const CliOptions& o) {
   const cli::Verbosity verbosity =
       o.quiet ? cli::Verbosity::Quiet
               : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
-  const auto t_run = std::chrono::steady_clock::now();
-  const SlideOptions options = slide_options(o);
-  const std::vector<FrameRange> ranges =
-      o.frame_ranges.empty() ? std::vector<FrameRange>{} : parse_frame_ranges(o.frame_ranges);
-  std::vector<std::string> outputs = o.rig ? std::vector<std::string>{} : output_paths(o);
-  std::vector<size_t> chosen;
-  if (!o.rig) chosen = chosen_frames(ranges, outputs, o.frames, o.frame_ranges);
-  if (!o.rig && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
-
-  // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
-  // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
-  MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
-  RigClip clip;
-  if (o.rig) {
-    clip = rig_clip(bind, {o.animation, o.fps});
-    std::vector<std::string> inputs = o.patches;
-    inputs.push_back(o.bind);
-    for (const std::string& name : clip.names) {
-      const fs::path target = fs::path(o.output) / (name + "." + o.format);
-      for (const std::string& in : inputs)
-        if (same_file(target, in))
-          throw Error(ErrorKind::Usage, "output " + target.string() + " would overwrite input " +
-                                            in + "; choose another --output folder");
-      outputs.push_back(target.string());
-    }
-    chosen = chosen_frames(ranges, outputs, clip.names, o.frame_ranges);
-  }
-  std::vector<std::vector<Index>> selections;
-  for (const std::string& p : o.patches)
-    selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
-  RunReport report;
-  const SlideControls controls = slide_controls(o, bind, report);
-  // The bind file's contents served the controls (vertex colours, attributes); from here on the
-  // frames need only its mesh, unless it is the character the frames are posed from. At 1M
-  // vertices an OBJ's text and token spans are about 70 MB held for the whole run.
-  if (!o.rig) {
-    bind.obj.reset();
-    bind.gltf.reset();
-  }
-  unsigned threads = o.threads == 0 ? usable_cores() : o.threads;
-  // --no-slide measures the I/O floor of a run: no bind set-up, frames copied unchanged.
-  const BindSetup setup =
-      o.no_slide ? BindSetup{}
-                 : bind_setup(
-                       bind.mesh, selections, options, controls,
-                       [&](Index f) {
-                         return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
-                       },
-                       threads);
-  report.bind_seconds = seconds_since(t_run);
-  size_t sliding = 0;
-  for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
-  if (o.no_slide && verbosity != cli::Verbosity::Quiet)
-    std::fprintf(stderr,
-                 "skinslide: %s: --no-slide: frames are read, checked and written unchanged\n",
-                 o.bind.c_str());
-  else if (verbosity != cli::Verbosity::Quiet)
-    std::fprintf(stderr,
-                 "skinslide: %s: %zu patches, %zu sliding vertices (%s)\n", o.bind.c_str(),
-                 setup.patches.size(), sliding,
-                 options.method == SlideMethod::Paper
-                     ? ("method paper, density " + to_string(options.density) + ", holes " +
-                        to_string(options.holes))
-                           .c_str()
-                     : "method elastic");
-  if (verbosity == cli::Verbosity::Verbose)
-    for (size_t p = 0; p < setup.patches.size(); ++p) {
-      const PatchNet& n = setup.patches[p];
-      std::fprintf(
-          stderr,
-          "  patch %zu: %zu faces, %zu vertices, %zu loops, %zu free%s, bind net flips %d\n", p,
-          n.faces.size(), n.vertices.size(), n.loops.size(), n.free_vertices.size(),
-          n.skipped ? " (skipped)" : "", n.bind_net_flips);
-      if (!n.skipped && n.elastic)  // the elastic chart is a disk: no corners
-        std::fprintf(stderr, "    outer loop from vertex %d%s, %zu pinned\n",
-                     n.vertices[n.loops[n.outer_loop].front()],
-                     n.outer_loop_chosen ? " (chosen)" : "", n.pinned.size());
-      else if (!n.skipped)
-        std::fprintf(stderr, "    outer loop from vertex %d%s, corners %d,%d,%d,%d%s, %zu pinned\n",
-                     n.vertices[n.loops[n.outer_loop].front()],
-                     n.outer_loop_chosen ? " (chosen)" : "", n.vertices[n.corners[0]],
-                     n.vertices[n.corners[1]], n.vertices[n.corners[2]], n.vertices[n.corners[3]],
-                     n.corners_chosen ? " (chosen)" : "", n.pinned.size());
-    }
-  if (verbosity == cli::Verbosity::Verbose && !controls.pins.empty())
-    std::fprintf(stderr,
-                 "  %zu pins, %d of them on a boundary loop or outside every patch (ignored)\n",
-                 controls.pins.size(), setup.pins_ignored);
-  make_output_dir(o.output);
-  if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
-
-  const size_t count = chosen.size();
-  threads = static_cast<unsigned>(std::min<size_t>(threads, count));
-  if (verbosity == cli::Verbosity::Verbose)
-    std::fprintf(stderr, "  %zu frames, %u at a time%s\n", count, threads,
-                 o.threads == 0 ? " (-j 0: the cores this task may use)" : "");
-  cli::Progress progress(count, verbosity, isatty(STDERR_FILENO) != 0);
-  std::atomic<size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::vector<std::unique_ptr<Error>> errors(count);
-  if (!o.report.empty()) report.frames.resize(count);
-  auto worker = [&] {
-    for (size_t j; !stop && (j = next++) < count;) {
-      const size_t i = chosen[j];
-      try {
-        ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
-        progress.done(j, o.rig ? run_rig_frame(setup, bind, clip, o, i, outputs[i], record)
-                               : run_frame(setup, bind, o, o.frames[i], outputs[i], record));
-        continue;
-      } catch (const Error& e) {
-        errors[j] = std::make_unique<Error>(e);
-      } catch (const std::bad_alloc&) {
-        errors[j] = std::make_unique<Error>(
-            ErrorKind::Internal, (o.rig ? clip.names[i] : o.frames[i]) + ": out of memory");
-      } catch (const std::exception& e) {
-        errors[j] = std::make_unique<Error>(
-            ErrorKind::Internal, (o.rig ? clip.names[i] : o.frames[i]) + ": " + e.what());
-      }
-      // Fail fast by default: a farm task with a bad frame should fail, not half-succeed
-      // (README "Exit codes"). --keep-going writes every good frame and names every bad one.
-      if (o.keep_going)
-        progress.done(j, {});
-      else
-        stop = true;
-    }
+  const auto shown = [&](LogLevel level) {
+    return level == LogLevel::Error ||
+           (level == LogLevel::Info && verbosity != cli::Verbosity::Quiet) ||
+           verbosity == cli::Verbosity::Verbose;
   };
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
-  progress.finish();
-  // Each output was flushed before its rename; flushing the folders makes the renames durable.
-  for (const std::string& folder : {o.output, o.dump_dir, o.preview_dir})
-    if (!folder.empty()) sync_folder(folder);
-  size_t failed = 0;
-  const Error* first = nullptr;
-  for (const auto& e : errors)
-    if (e) {
-      ++failed;
-      if (!first) first = e.get();  // the first bad frame in list order decides the exit code
-    }
-  if (first && !o.keep_going) throw *first;
-  for (const auto& e : errors)
-    if (e) std::fprintf(stderr, "skinslide: error: %s\n", e->what());
-  if (!o.report.empty()) {
-    report.bind = o.bind;
-    report.patch_files = o.patches;
-    report.timings = !o.report_no_timings;
-    report.wall_seconds = seconds_since(t_run);
-    // --keep-going: the report lists the frames written.
-    std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });
-    write_file_atomic(o.report, report_json(setup, report));
-    const fs::path report_folder = fs::path(o.report).parent_path();
-    sync_folder(report_folder.empty() ? "." : report_folder.string());
-  }
+  std::optional<cli::Progress> progress;
+  RunEvents events;
+  events.log = [&](const LogLine& line) {
+    if (shown(line.level)) std::fprintf(stderr, "%s\n", line.text.c_str());
+  };
+  events.frames_begin = [&](size_t count) {
+    progress.emplace(count, verbosity, isatty(STDERR_FILENO) != 0);
+  };
+  events.frame_done = [&](size_t j, std::vector<LogLine> lines) {
+    std::vector<std::string> text;
+    for (LogLine& line : lines)
+      if (shown(line.level)) text.push_back(std::move(line.text));
+    progress->done(j, std::move(text));
+  };
+  events.frames_end = [&] { progress->finish(); };
+  const RunResult result = skinslide::run(run_options(o), events);
+  const size_t failed = result.failures.size();
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
-    std::fprintf(stderr, "skinslide: %zu frames %s%s in %.2f s -> %s\n", count - failed,
+    std::fprintf(stderr, "skinslide: %zu frames %s%s in %.2f s -> %s\n", result.frames - failed,
                  o.no_slide ? "copied" : "slid",
                  failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
-                 progress.elapsed_seconds(), o.output.c_str());
-  if (first) return exit_code(first->kind());
-  return 0;
+                 progress->elapsed_seconds(), o.output.c_str());
+  return failed ? exit_code(result.failures.front().kind()) : 0;
 }
 
 }  // namespace
@@ -897,7 +444,7 @@ int main(int argc, char** argv) {
     return exit_code(ErrorKind::Usage);
   }
   try {
-    return run(o);
+    return run_and_print(o);
   } catch (const Error& e) {
     std::fprintf(stderr, "skinslide: error: %s\n", e.what());
     return exit_code(e.kind());
