@@ -142,6 +142,8 @@ def add_modifier(ob, free, iterations):
     res = bpy.ops.object.correctivesmooth_bind(modifier=md.name)
     if "FINISHED" not in res or not md.is_bind:
         raise SystemExit("corrective_smooth.py: correctivesmooth_bind failed: %s" % (res,))
+    print("corrective_smooth.py: bound (a \"Bind data required\" error above is the scene's "
+          "evaluation before the bind, expected)")
     return md
 
 
