@@ -20,7 +20,8 @@
 #                        this method is asked for; when that fails and the method was not named
 #                        in --methods, its rows say n/a). A benchmark peer only, never a
 #                        dependency. s/frame includes Blender's start and mesh build (about 1-2 s
-#                        a case); the method adds about 30-60 s to a full run.
+#                        a case); the method adds about 20 s to a full run on an idle 2-core
+#                        machine (53 s against 31 s), about 60 s on a loaded one.
 #   --keep DIR keep the work files (inputs, patches, slid frames, per-frame JSON) in DIR;
 #              default: a temporary folder, removed at the end
 # Environment: SKINSLIDE=path/to/binary skips the build (else scripts/build.sh builds build/);
