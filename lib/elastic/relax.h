@@ -21,7 +21,7 @@ struct ElasticOptions {
   int max_iterations = 100;  ///< Gauss-Newton steps per round at most
   /// A round stops once two steps in a row each lower its energy by less than this fraction of
   /// the energy it started with.
-  double tolerance = 1e-6;
+  double tolerance = 1e-4;
 };
 
 /// Bind-time precompute of one patch: plain data, immutable once built, shared by every frame.
