@@ -198,13 +198,14 @@ int main(int argc, char** argv) {
   app.add_option("--mesh", o.mesh, "Mesh of a .gltf/.glb holding several (name, else index)")
       ->type_name("NAME|INDEX")
       ->group(gl);
-  auto* anim = app.add_option("--animation", o.animation,
-                              "BIND is an animated glTF character (skin and/or morph targets): pose "
-                              "it at each sampled time of this clip (name, else index) and slide "
-                              "those frames")
-                   ->type_name("NAME|INDEX")
-                   ->excludes(frames_opt)
-                   ->group(gl);
+  auto* anim =
+      app.add_option("--animation", o.animation,
+                     "BIND is an animated glTF character (skin and/or morph targets): pose "
+                     "it at each sampled time of this clip (name, else index) and slide "
+                     "those frames")
+          ->type_name("NAME|INDEX")
+          ->excludes(frames_opt)
+          ->group(gl);
   auto* fps =
       app.add_option("--fps", o.fps, "Sample the clip every 1/N s from its first key to its last")
           ->check(CLI::Range(0.001, 100000.0))
@@ -269,16 +270,17 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(method);
-  app.add_option(
-         "--density", o.density,
-         "Paper: force density q of a bar of length L: paper = 1 - L/Lmax (floored), inverse|length "
-         "= Lmin/L, uniform = 1")
+  app.add_option("--density", o.density,
+                 "Paper: force density q of a bar of length L: paper = 1 - L/Lmax (floored), "
+                 "inverse|length "
+                 "= Lmin/L, uniform = 1")
       ->capture_default_str()
       ->check(CLI::IsMember({"paper", "inverse", "length", "uniform"}))
       ->group(method);
-  app.add_option("--holes", o.holes,
-                 "Paper: inner boundary loops in the bind net: free (the paper) or fill (a virtual centre "
-                 "node per hole)")
+  app.add_option(
+         "--holes", o.holes,
+         "Paper: inner boundary loops in the bind net: free (the paper) or fill (a virtual centre "
+         "node per hole)")
       ->capture_default_str()
       ->check(CLI::IsMember({"free", "fill"}))
       ->group(method);
@@ -287,7 +289,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-12, 1.0))
       ->group(method);
   const std::string solver_help =
-      "Paper: how bind and frame nets are solved: cholesky (sparse factor, analysis reused by every "
+      "Paper: how bind and frame nets are solved: cholesky (sparse factor, analysis reused by "
+      "every "
       "frame), multigrid (conjugate gradient preconditioned by an aggregation multigrid; no "
       "ordering, so a shorter set-up, and faster frames on large patches), auto (multigrid for "
       "patches of " +
@@ -298,9 +301,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "cholesky", "multigrid", "cg"}))
       ->group(method);
-  app.add_option("--cg-tolerance", o.cg_tolerance,
-                 "Paper: CG (multigrid, cg) stops at |r| <= tol |b|; every method keeps a frame's warm "
-                 "start that meets it")
+  app.add_option(
+         "--cg-tolerance", o.cg_tolerance,
+         "Paper: CG (multigrid, cg) stops at |r| <= tol |b|; every method keeps a frame's warm "
+         "start that meets it")
       ->capture_default_str()
       ->check(CLI::Range(1e-16, 1e-2))
       ->group(method);
@@ -309,9 +313,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000))
       ->group(method);
-  app.add_option("--locate", o.locate,
-                 "Paper: finding bind positions in frame nets: walk (from each vertex's own triangles) or "
-                 "image (a triangle-ID image, --lookup-size)")
+  app.add_option(
+         "--locate", o.locate,
+         "Paper: finding bind positions in frame nets: walk (from each vertex's own triangles) or "
+         "image (a triangle-ID image, --lookup-size)")
       ->capture_default_str()
       ->check(CLI::IsMember({"walk", "image"}))
       ->group(method);

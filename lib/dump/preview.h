@@ -31,9 +31,9 @@ struct PreviewColors {
 /// `bars` over them, and for every vertex in `moved` a segment from its frame-net position to its
 /// bind-net position (where it slides to in the frame's net) ending in a dot. With
 /// `slides_to_frame_net` (the elastic method: `bind_net` is the patch's chart, `frame_net` where
-/// the vertices slid to in it) the segments run the other way and the dots mark `frame_net`. Lines are about one
-/// pixel wide, anti-aliased by distance; the image depends only on the inputs.
-/// \param bind_net, frame_net 2D position of every net vertex (#n each); `bars` and `moved`
+/// the vertices slid to in it) the segments run the other way and the dots mark `frame_net`. Lines
+/// are about one pixel wide, anti-aliased by distance; the image depends only on the inputs. \param
+/// bind_net, frame_net 2D position of every net vertex (#n each); `bars` and `moved`
 ///        index them (local ids). Points outside the unit square are drawn while in the margin.
 /// \pre size >= 16
 RgbImage preview_image(const Positions2& bind_net, const Positions2& frame_net,

@@ -58,8 +58,7 @@ struct RotationFit {
 
 RotationFit fit_rotation(const Mat32& J, double s, const Vec3& frame_normal) {
   RotationFit out;
-  const double a = J.col(0).squaredNorm(), b = J.col(0).dot(J.col(1)),
-               c = J.col(1).squaredNorm();
+  const double a = J.col(0).squaredNorm(), b = J.col(0).dot(J.col(1)), c = J.col(1).squaredNorm();
   const double tr = a + c;
   // The eigenvalues of J^T J, each to round-off: the energy of a frame at rest is then round-off
   // squared, not round-off.
@@ -172,6 +171,16 @@ Mat32 vertex_jacobian(const ElasticSetup& setup, const Positions3& frame,
   return B * A.inverse();
 }
 
+// How far direction d (non-zero) points into the wedge of patch triangle t at its corner v: the
+// smaller of the two normalised crosses with the wedge's edges, >= 0 inside.
+double wedge_score(const Chart& chart, Index t, Index v, const Vec2& d) {
+  const Triangle& tri = chart.triangles[t];
+  const int c = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+  const Vec2 a = chart.uv[tri[(c + 1) % 3]] - chart.uv[v];
+  const Vec2 b = chart.uv[tri[(c + 2) % 3]] - chart.uv[v];
+  return std::min(cross2(a, d) / (a.norm() * d.norm()), cross2(d, b) / (b.norm() * d.norm()));
+}
+
 // The patch triangle a point enters when it leaves `u` along `d`: at a chart vertex the incident
 // triangle whose wedge holds d; on an edge the triangle across it when d points out; else its own.
 Index entered_triangle(const Chart& chart, Index vertex_at, const Vec2& u, Index t, const Vec2& d) {
@@ -181,13 +190,7 @@ Index entered_triangle(const Chart& chart, Index vertex_at, const Vec2& u, Index
     double best_score = -INFINITY;
     for (Index k = chart.corner_start[vertex_at]; k < chart.corner_start[vertex_at + 1]; ++k) {
       const Index s = chart.corner_triangles[k];
-      const Triangle& tri = chart.triangles[s];
-      const int c = tri[0] == vertex_at ? 0 : tri[1] == vertex_at ? 1 : 2;
-      const Vec2 a = chart.uv[tri[(c + 1) % 3]] - chart.uv[vertex_at];
-      const Vec2 b = chart.uv[tri[(c + 2) % 3]] - chart.uv[vertex_at];
-      // >= 0 for both when d lies in the wedge from a to b (counter-clockwise).
-      const double score = std::min(cross2(a, d) / (a.norm() * d.norm()),
-                                    cross2(d, b) / (b.norm() * d.norm()));
+      const double score = wedge_score(chart, s, vertex_at, d);
       if (score > best_score) {
         best_score = score;
         best = s;
@@ -269,8 +272,8 @@ class StepSystem {
   }
 
   // Solves H d = -T^T g. False when the factorisation fails.
-  bool solve(const std::vector<Mat32>& T, const std::vector<char>& held,
-             const Positions3& gradient, Positions2& d) {
+  bool solve(const std::vector<Mat32>& T, const std::vector<char>& held, const Positions3& gradient,
+             Positions2& d) {
     const Index m = static_cast<Index>(setup_.movable.size());
     double* value = H_.valuePtr();
     Index k = 0;
@@ -298,7 +301,8 @@ class StepSystem {
             if (setup_.metric_column[e] == j && a == b) value[k] += mu;
     Eigen::VectorXd rhs(2 * m);
     for (Index i = 0; i < m; ++i) {
-      const Vec2 r = held[i] ? Vec2::Zero() : Vec2(-(T[i].transpose() * gradient[setup_.movable[i]]));
+      const Vec2 r =
+          held[i] ? Vec2::Zero() : Vec2(-(T[i].transpose() * gradient[setup_.movable[i]]));
       rhs.segment<2>(2 * i) = r;
     }
     Eigen::VectorXd x;
@@ -499,17 +503,12 @@ class Relaxation {
     double best_score = -INFINITY;
     for (Index k = chart_.corner_start[v]; k < chart_.corner_start[v + 1]; ++k) {
       const Index t = chart_.corner_triangles[k];
-      const Triangle& tri = tris_[t];
-      const int c = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
       const Mat32& Tk = jacobian_[t];
       const Eigen::Matrix2d A = Tk.transpose() * Tk;
       if (!(std::abs(A.determinant()) > 0)) continue;
       const Vec2 dk = A.inverse() * (Tk.transpose() * motion);
-      const Vec2 a = chart_.uv[tri[(c + 1) % 3]] - chart_.uv[v];
-      const Vec2 b = chart_.uv[tri[(c + 2) % 3]] - chart_.uv[v];
-      const double n = dk.norm();
-      if (!(n > 0)) continue;
-      const double score = std::min(cross2(a, dk) / (a.norm() * n), cross2(dk, b) / (b.norm() * n));
+      if (!(dk.norm() > 0)) continue;
+      const double score = wedge_score(chart_, t, v, dk);
       if (score > best_score) {
         best_score = score;
         best = dk;
@@ -659,9 +658,9 @@ class Relaxation {
   const Positions3& frame_;
   const std::vector<Vec3>& normals_;
   const double s_;
-  ElasticResult& result_;  // uv and where: the movable vertices' chart points so far
-  Positions3 x_;           // the slid patch (local ids)
-  Positions2 node_uv_;     // every chart node's point: movable ones follow the slide
+  ElasticResult& result_;        // uv and where: the movable vertices' chart points so far
+  Positions3 x_;                 // the slid patch (local ids)
+  Positions2 node_uv_;           // every chart node's point: movable ones follow the slide
   std::vector<Mat32> jacobian_;  // the frame over each chart triangle
   std::vector<char> on_vertex_;  // still on its own chart node
   std::vector<Mat32> T_;         // the model's Jacobians this step
@@ -683,7 +682,8 @@ ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>
   setup.chart = disk_chart(points, triangles, loops, outer_loop);
   setup.movable = movable;
   setup.movable_slot.assign(points.size(), -1);
-  for (size_t i = 0; i < movable.size(); ++i) setup.movable_slot[movable[i]] = static_cast<Index>(i);
+  for (size_t i = 0; i < movable.size(); ++i)
+    setup.movable_slot[movable[i]] = static_cast<Index>(i);
   setup.rest_inverse.resize(triangles.size());
   double area = 0;
   for (size_t t = 0; t < triangles.size(); ++t) {
@@ -703,8 +703,10 @@ ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>
     const std::array<Vec2, 3> G = gradient_rows(D);
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l) {
-        const Index i = setup.movable_slot[triangles[t][k]], j = setup.movable_slot[triangles[t][l]];
-        if (i >= 0 && j >= 0) entries.emplace_back(i, j, 2 * setup.triangle_weight * G[k].dot(G[l]));
+        const Index i = setup.movable_slot[triangles[t][k]],
+                    j = setup.movable_slot[triangles[t][l]];
+        if (i >= 0 && j >= 0)
+          entries.emplace_back(i, j, 2 * setup.triangle_weight * G[k].dot(G[l]));
       }
   }
   // Every movable vertex keeps a diagonal entry, even with no rest shape around it.

@@ -55,12 +55,12 @@ struct ElasticResult {
   /// Per movable vertex (parallel to ElasticSetup::movable): its chart point and where that lies.
   Positions2 uv;
   std::vector<ChartPoint> where;
-  Positions3 position;        ///< the slid 3D position: on `where`'s frame triangle
-  double energy_before = 0;   ///< the frame's ARAP energy against the bind
-  double energy_after = 0;    ///< the slid patch's, never above energy_before
-  double scale = 1;           ///< s: sqrt(frame area / bind area), the stretch aimed at
-  int iterations = 0;         ///< steps taken, over all rounds
-  int held = 0;               ///< vertex-steps held in place to keep a step a descent (total)
+  Positions3 position;       ///< the slid 3D position: on `where`'s frame triangle
+  double energy_before = 0;  ///< the frame's ARAP energy against the bind
+  double energy_after = 0;   ///< the slid patch's, never above energy_before
+  double scale = 1;          ///< s: sqrt(frame area / bind area), the stretch aimed at
+  int iterations = 0;        ///< steps taken, over all rounds
+  int held = 0;              ///< vertex-steps held in place to keep a step a descent (total)
   /// Why it stopped: "at rest" (the frame is the bind up to a rigid motion and a uniform scale),
   /// "converged", "limit" (a round took max_iterations steps), "no descent" (round-off ate the
   /// gain: the frame is returned).

@@ -279,9 +279,9 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
     patch.bind_lengths = bar_lengths(points, patch.bars);
     patch.elastic = std::make_shared<const ElasticSetup>(
         elastic_setup(points, patch.triangles, patch.loops, patch.outer_loop, movable));
-    patch.bind_net.assign(patch.elastic->chart.uv.begin(),
-                          patch.elastic->chart.uv.begin() +
-                              static_cast<std::ptrdiff_t>(patch.vertices.size()));
+    patch.bind_net.assign(
+        patch.elastic->chart.uv.begin(),
+        patch.elastic->chart.uv.begin() + static_cast<std::ptrdiff_t>(patch.vertices.size()));
     patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
     return patch;
   }

@@ -115,18 +115,18 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
                  .add("tolerance", number(o.elastic.tolerance))
                  .str());
   else
-  root.add("options",
-           Object(2)
-               .add("method", quoted(to_string(o.method)))
-               .add("density", quoted(to_string(o.density)))
-               .add("holes", quoted(to_string(o.holes)))
-               .add("q_floor", number(o.q_floor))
-               .add("frame_solver", quoted(to_string(o.frame_solver)))
-               .add("cg_tolerance", number(o.cg_tolerance))
-               .add("cg_max_iterations", number(static_cast<long long>(o.cg_max_iterations)))
-               .add("locate", quoted(to_string(o.locate)))
-               .add("lookup_size", number(static_cast<long long>(o.lookup_size)))
-               .str());
+    root.add("options",
+             Object(2)
+                 .add("method", quoted(to_string(o.method)))
+                 .add("density", quoted(to_string(o.density)))
+                 .add("holes", quoted(to_string(o.holes)))
+                 .add("q_floor", number(o.q_floor))
+                 .add("frame_solver", quoted(to_string(o.frame_solver)))
+                 .add("cg_tolerance", number(o.cg_tolerance))
+                 .add("cg_max_iterations", number(static_cast<long long>(o.cg_max_iterations)))
+                 .add("locate", quoted(to_string(o.locate)))
+                 .add("lookup_size", number(static_cast<long long>(o.lookup_size)))
+                 .str());
   root.add("controls",
            Object(2)
                .add("weights", run.weights.empty() ? "null" : quoted(run.weights))
@@ -147,14 +147,14 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
               .add("vertices", number(static_cast<long long>(p.vertices.size())))
               .add("free", number(static_cast<long long>(p.free_vertices.size())))
               .add("pinned", number(static_cast<long long>(p.pinned.size())))
-              .add("moving", number(static_cast<long long>(p.elastic ? p.elastic->movable.size()
-                                                                     : 0)))
+              .add("moving",
+                   number(static_cast<long long>(p.elastic ? p.elastic->movable.size() : 0)))
               .add("loops", number(static_cast<long long>(p.loops.size())))
               .add("outer_loop_start",
                    number(static_cast<long long>(p.vertices[p.loops[p.outer_loop].front()])))
               .add("outer_loop_chosen", boolean(p.outer_loop_chosen))
               .add("skipped", boolean(p.skipped))
-              .add("chart_weights", quoted(!p.elastic                           ? "none"
+              .add("chart_weights", quoted(!p.elastic                         ? "none"
                                            : p.elastic->chart.uniform_weights ? "uniform"
                                                                               : "mean value"))
               .str());
@@ -185,50 +185,40 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   for (const ReportFrame& f : run.frames) {
     std::vector<std::string> fp;
     for (const PatchFrameReport& r : f.patches) {
+      // Each method's own figures, then the slide's, which both have.
+      Object patch(8);
       if (elastic) {
-        fp.push_back(Object(8)
-                         .add("energy_before", number(r.energy_before))
-                         .add("energy_after", number(r.energy_after))
-                         .add("iterations", number(static_cast<long long>(r.iterations)))
-                         .add("stop", quoted(r.stop.empty() ? "skipped" : r.stop))
-                         .add("held", number(static_cast<long long>(r.held)))
-                         .add("flips", number(static_cast<long long>(r.slid_flips)))
-                         .add("moved", number(static_cast<long long>(r.moved)))
-                         .add("max_slide", number(r.max_slide))
-                         .add("mean_slide", number(r.mean_slide))
-                         .add("spread_frame", number(r.spread_frame))
-                         .add("spread_slid", number(r.spread_slid))
-                         .str());
-        moved += r.moved;
+        patch.add("energy_before", number(r.energy_before))
+            .add("energy_after", number(r.energy_after))
+            .add("iterations", number(static_cast<long long>(r.iterations)))
+            .add("stop", quoted(r.stop.empty() ? "skipped" : r.stop))
+            .add("held", number(static_cast<long long>(r.held)))
+            .add("flips", number(static_cast<long long>(r.slid_flips)));
         iterations += r.iterations;
         held += r.held;
         flips += r.slid_flips;
-        max_slide = std::max(max_slide, r.max_slide);
-        solve += r.solve_seconds;
-        transfer += r.transfer_seconds;
-        continue;
+      } else {
+        patch.add("cg_iterations", number(static_cast<long long>(r.cg_iterations)))
+            .add("cg_residual", number(r.cg_residual))
+            .add("direct_solve", boolean(r.direct_solve))
+            .add("located_in_image", number(static_cast<long long>(r.located_in_image)))
+            .add("located_fallback", number(static_cast<long long>(r.located_fallback)))
+            .add("frame_net_flips", number(static_cast<long long>(r.frame_net_flips)));
+        iterations += r.cg_iterations;
+        direct += r.direct_solve;
+        fallbacks += r.located_fallback;
+        flips += r.frame_net_flips;
+        locate += r.locate_seconds;
       }
-      fp.push_back(Object(8)
-                       .add("cg_iterations", number(static_cast<long long>(r.cg_iterations)))
-                       .add("cg_residual", number(r.cg_residual))
-                       .add("direct_solve", boolean(r.direct_solve))
-                       .add("located_in_image", number(static_cast<long long>(r.located_in_image)))
-                       .add("located_fallback", number(static_cast<long long>(r.located_fallback)))
-                       .add("frame_net_flips", number(static_cast<long long>(r.frame_net_flips)))
-                       .add("moved", number(static_cast<long long>(r.moved)))
-                       .add("max_slide", number(r.max_slide))
-                       .add("mean_slide", number(r.mean_slide))
-                       .add("spread_frame", number(r.spread_frame))
-                       .add("spread_slid", number(r.spread_slid))
-                       .str());
+      patch.add("moved", number(static_cast<long long>(r.moved)))
+          .add("max_slide", number(r.max_slide))
+          .add("mean_slide", number(r.mean_slide))
+          .add("spread_frame", number(r.spread_frame))
+          .add("spread_slid", number(r.spread_slid));
+      fp.push_back(patch.str());
       moved += r.moved;
-      iterations += r.cg_iterations;
-      direct += r.direct_solve;
-      fallbacks += r.located_fallback;
-      flips += r.frame_net_flips;
       max_slide = std::max(max_slide, r.max_slide);
       solve += r.solve_seconds;
-      locate += r.locate_seconds;
       transfer += r.transfer_seconds;
     }
     read += f.read_seconds;
@@ -250,15 +240,15 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
                            .add("max_slide", number(max_slide))
                            .str());
   else
-  root.add("totals", Object(2)
-                         .add("frames", number(static_cast<long long>(run.frames.size())))
-                         .add("moved", number(moved))
-                         .add("cg_iterations", number(iterations))
-                         .add("direct_solves", number(direct))
-                         .add("fallbacks", number(fallbacks))
-                         .add("frame_net_flips", number(flips))
-                         .add("max_slide", number(max_slide))
-                         .str());
+    root.add("totals", Object(2)
+                           .add("frames", number(static_cast<long long>(run.frames.size())))
+                           .add("moved", number(moved))
+                           .add("cg_iterations", number(iterations))
+                           .add("direct_solves", number(direct))
+                           .add("fallbacks", number(fallbacks))
+                           .add("frame_net_flips", number(flips))
+                           .add("max_slide", number(max_slide))
+                           .str());
   if (run.timings)
     root.add("timings", Object(2)
                             .add("bind_setup", number(run.bind_seconds))

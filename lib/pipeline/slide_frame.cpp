@@ -37,6 +37,15 @@ double edge_log_spread(const PatchNet& patch, const Positions3& points) {
   return std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean));
 }
 
+// Appends local vertex v of `patch`, written at p, on patch triangle t at barycentrics w.
+void append_slid(const PatchNet& patch, Index v, Index t, const std::array<double, 3>& w,
+                 const Vec3& p, SlidVertices& moved) {
+  const Index fan = patch.triangle_fan[t];
+  moved.vertex.push_back(patch.vertices[v]);
+  moved.sample.push_back(SurfaceSample{patch.triangle_face[t], {0, fan + 1, fan + 2}, w});
+  moved.position.push_back(p);
+}
+
 // Slid triangles whose normal turns against the frame's own (frame triangles with area only).
 int turned_triangles(const PatchNet& patch, const Positions3& frame, const Positions3& slid) {
   int turned = 0;
@@ -89,11 +98,7 @@ PatchFrameReport slide_patch_elastic(const BindSetup& setup, const PatchNet& pat
     output[v] = p;
     ++report.moved;
     ++report.located_in_image;
-    const Index fan = patch.triangle_fan[where.triangle];
-    moved.vertex.push_back(patch.vertices[v]);
-    moved.sample.push_back(
-        SurfaceSample{patch.triangle_face[where.triangle], {0, fan + 1, fan + 2}, where.weight});
-    moved.position.push_back(p);
+    append_slid(patch, v, where.triangle, where.weight, p, moved);
     const double d = (p - points[v]).norm();
     report.max_slide = std::max(report.max_slide, d);
     total += d;
@@ -172,11 +177,7 @@ PatchFrameReport slide_patch(const BindSetup& setup, const PatchNet& patch, cons
     if (w != 1) p = points[v] + w * (p - points[v]);
     if (extras.edge_spread) output[v] = p;
     ++report.moved;
-    const Index fan = patch.triangle_fan[loc.triangle];
-    moved.vertex.push_back(patch.vertices[v]);
-    moved.sample.push_back(
-        SurfaceSample{patch.triangle_face[loc.triangle], {0, fan + 1, fan + 2}, loc.weight});
-    moved.position.push_back(p);
+    append_slid(patch, v, loc.triangle, loc.weight, p, moved);
     const double d = (p - points[v]).norm();
     report.max_slide = std::max(report.max_slide, d);
     total += d;
