@@ -475,10 +475,25 @@ class Relaxation {
     return t;
   }
 
-  // Slid triangles turned against (or flat on) the frame's own, where the frame's has area.
-  std::vector<Index> turned(const Positions3& y) const {
+  // The patch triangles with a corner that `dir` moves, ascending: only they can turn.
+  std::vector<Index> moving_triangles(const Direction& dir) const {
     std::vector<Index> out;
-    for (Index t = 0; t < nt_; ++t) {
+    for (Index i = 0; i < m_; ++i) {
+      if (dir.d[i].isZero(0)) continue;
+      const Index v = setup_.movable[i];
+      for (Index k = chart_.corner_start[v]; k < chart_.corner_start[v + 1]; ++k)
+        if (chart_.corner_triangles[k] < nt_) out.push_back(chart_.corner_triangles[k]);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  // Of `candidates`, the slid triangles turned against (or flat on) the frame's own, where the
+  // frame's has area.
+  std::vector<Index> turned(const Positions3& y, const std::vector<Index>& candidates) const {
+    std::vector<Index> out;
+    for (Index t : candidates) {
       const Triangle& tri = tris_[t];
       if (normals_[t].isZero(0)) continue;
       const Vec3 n = (y[tri[1]] - y[tri[0]]).cross(y[tri[2]] - y[tri[0]]);
@@ -574,7 +589,8 @@ class Relaxation {
         for (Index t = 0; t < nt_; ++t)
           if (roots[t] < 1) culprits.push_back(t);
       } else {
-        culprits = turned(trial(candidates.back(), std::min(1.0, 0.8 * alpha_max)).x);
+        culprits = turned(trial(candidates.back(), std::min(1.0, 0.8 * alpha_max)).x,
+                          moving_triangles(candidates.back()));
       }
       if (culprits.empty()) break;
       const std::vector<char> before = held_;
@@ -620,12 +636,15 @@ class Relaxation {
     for (const Direction& c : candidates) {
       if (!(c.slope < 0)) continue;
       double alpha = std::min(1.0, 0.8 * step_bound(c, nullptr));
+      const std::vector<Index> moving = moving_triangles(c);
       for (int halving = 0; halving < 40 && alpha > 0; ++halving, alpha *= 0.5) {
         Direction part = c;
         Trial t = trial(part, alpha);
-        for (std::vector<Index> bad = turned(t.x); !bad.empty() && part.slope < 0;
-             bad = turned(t.x))
-          for (Index q : bad)
+        // Until no triangle turns; a turned triangle none of whose corners moves (turned already,
+        // or flat to round-off) cannot be helped here and ends the loop.
+        for (bool stopped = true; stopped && part.slope < 0;) {
+          stopped = false;
+          for (Index q : turned(t.x, moving))
             for (Index v : tris_[q]) {
               const Index i = setup_.movable_slot[v];
               if (i < 0 || part.d[i].isZero(0)) continue;
@@ -634,7 +653,9 @@ class Relaxation {
               t.uv[i] = result_.uv[i];
               t.where[i] = result_.where[i];
               t.x[v] = x_[v];
+              stopped = true;
             }
+        }
         if (!(part.slope < 0)) continue;
         const double e = held_rotation_energy(setup_, t.x, s_, R_, nullptr);
         if (std::isfinite(e) && e < E_ && e <= E_ + 1e-4 * alpha * part.slope) {
