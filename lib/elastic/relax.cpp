@@ -6,15 +6,13 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
-#include <Eigen/SparseCholesky>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "elastic/step_system.h"
 
 namespace skinslide {
 namespace {
-
-using Mat32 = Eigen::Matrix<double, 3, 2>;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -246,128 +244,6 @@ double max_step(const ElasticSetup& setup, const Positions2& node_uv, const Posi
   return alpha;
 }
 
-// The Gauss-Newton matrix T^T (K x I3) T over the movable vertices' chart coordinates, into a
-// fixed compressed-column pattern (2x2 blocks of the metric's pattern). Held vertices' rows and
-// columns are the identity's, so their step is zero.
-class StepSystem {
- public:
-  explicit StepSystem(const ElasticSetup& setup) : setup_(setup) {
-    const Index m = static_cast<Index>(setup.movable.size());
-    H_.resize(2 * m, 2 * m);
-    const size_t nnz = 4 * setup.metric_column.size();
-    H_.resizeNonZeros(static_cast<Eigen::Index>(nnz));
-    int* outer = H_.outerIndexPtr();
-    int* inner = H_.innerIndexPtr();
-    Index k = 0;
-    for (Index j = 0; j < m; ++j)
-      for (int b = 0; b < 2; ++b) {
-        outer[2 * j + b] = k;
-        for (Index e = setup.metric_start[j]; e < setup.metric_start[j + 1]; ++e) {
-          inner[k++] = 2 * setup.metric_column[e];
-          inner[k++] = 2 * setup.metric_column[e] + 1;
-        }
-      }
-    outer[2 * m] = k;
-    solver_.analyzePattern(H_);
-  }
-
-  // Solves H d = -T^T g. False when the factorisation fails.
-  bool solve(const std::vector<Mat32>& T, const std::vector<char>& held, const Positions3& gradient,
-             Positions2& d) {
-    const Index m = static_cast<Index>(setup_.movable.size());
-    double* value = H_.valuePtr();
-    Index k = 0;
-    double trace = 0;
-    for (Index j = 0; j < m; ++j)
-      for (int b = 0; b < 2; ++b)
-        for (Index e = setup_.metric_start[j]; e < setup_.metric_start[j + 1]; ++e) {
-          const Index i = setup_.metric_column[e];
-          for (int a = 0; a < 2; ++a, ++k) {
-            if (held[i] || held[j])
-              value[k] = (i == j && a == b) ? 1.0 : 0.0;
-            else
-              value[k] = setup_.metric_value[e] * T[i].col(a).dot(T[j].col(b));
-            if (i == j && a == b) trace += value[k];
-          }
-        }
-    // A frame triangle crushed to a line leaves its vertices' blocks singular: a whisper of the
-    // identity keeps the factorisation defined without changing any well-posed step.
-    const double mu = 1e-12 * trace / std::max<double>(1, 2 * m) + 1e-300;
-    k = 0;
-    for (Index j = 0; j < m; ++j)
-      for (int b = 0; b < 2; ++b)
-        for (Index e = setup_.metric_start[j]; e < setup_.metric_start[j + 1]; ++e)
-          for (int a = 0; a < 2; ++a, ++k)
-            if (setup_.metric_column[e] == j && a == b) value[k] += mu;
-    Eigen::VectorXd rhs(2 * m);
-    for (Index i = 0; i < m; ++i) {
-      const Vec2 r =
-          held[i] ? Vec2::Zero() : Vec2(-(T[i].transpose() * gradient[setup_.movable[i]]));
-      rhs.segment<2>(2 * i) = r;
-    }
-    Eigen::VectorXd x;
-    if (!(factored_ && !stale_ && preconditioned(rhs, x))) {
-      solver_.factorize(H_);
-      if (solver_.info() != Eigen::Success) return false;
-      factored_ = true;
-      stale_ = false;
-      ++factorizations;
-      x = solver_.solve(rhs);
-    }
-
-    if (!x.allFinite()) return false;
-    d.resize(m);
-    for (Index i = 0; i < m; ++i) d[i] = held[i] ? Vec2::Zero() : Vec2(x.segment<2>(2 * i));
-    return true;
-  }
-
- private:
-  // Conjugate gradients on H with the last factor as preconditioner: H changes little from one
-  // step to the next (only where vertices change triangles or are held), so a factor serves
-  // several steps. When it needs many iterations, the next solve factorises afresh; false when it
-  // does not converge.
-  bool preconditioned(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-    const double target = kStepTolerance * b.norm();
-    x = Eigen::VectorXd::Zero(b.size());
-    if (!(target > 0)) return true;
-    Eigen::VectorXd r = b;
-    Eigen::VectorXd z = solver_.solve(r);
-    Eigen::VectorXd p = z;
-    double rz = r.dot(z);
-    for (int k = 0; k < kMaxPreconditionedIterations; ++k) {
-      const Eigen::VectorXd Hp = H_ * p;
-      const double pHp = p.dot(Hp);
-      if (!(pHp > 0) || !(rz > 0)) return false;
-      const double alpha = rz / pHp;
-      x += alpha * p;
-      r -= alpha * Hp;
-      if (r.norm() <= target) {
-        stale_ = k >= kRefactorAfter;
-        return true;
-      }
-      z = solver_.solve(r);
-      const double rz_next = r.dot(z);
-      p = z + (rz_next / rz) * p;
-      rz = rz_next;
-    }
-    return false;
-  }
-
- public:
-  int factorizations = 0;
-
- private:
-  // An inexact Newton step: the line search measures the true energy.
-  static constexpr double kStepTolerance = 1e-4;
-  static constexpr int kMaxPreconditionedIterations = 30;
-  static constexpr int kRefactorAfter = 10;
-  const ElasticSetup& setup_;
-  SparseMatrix H_;
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver_;
-  bool factored_ = false;
-  bool stale_ = false;
-};
-
 // One patch's relaxation in one frame: the frame, the slid patch so far, and the steps that
 // move it (README rules 6-10). The rounds are driven by relax_patch.
 class Relaxation {
@@ -391,7 +267,8 @@ class Relaxation {
         held_(m_),
         switched_(m_),
         hold_cap_(std::max<Index>(16, m_ / 10)),
-        system_(setup) {
+        system_(setup.metric_start, setup.metric_column, setup.metric_value, *setup.step_multigrid),
+        g_movable_(m_) {
     for (Index t = 0; t < nt_; ++t) jacobian_[t] = chart_jacobian(setup, frame, t);
   }
 
@@ -477,15 +354,16 @@ class Relaxation {
 
   // The patch triangles with a corner that `dir` moves, ascending: only they can turn.
   std::vector<Index> moving_triangles(const Direction& dir) const {
-    std::vector<Index> out;
+    std::vector<char> moves(nt_, 0);
     for (Index i = 0; i < m_; ++i) {
       if (dir.d[i].isZero(0)) continue;
       const Index v = setup_.movable[i];
       for (Index k = chart_.corner_start[v]; k < chart_.corner_start[v + 1]; ++k)
-        if (chart_.corner_triangles[k] < nt_) out.push_back(chart_.corner_triangles[k]);
+        if (chart_.corner_triangles[k] < nt_) moves[chart_.corner_triangles[k]] = 1;
     }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    std::vector<Index> out;
+    for (Index t = 0; t < nt_; ++t)
+      if (moves[t]) out.push_back(t);
     return out;
   }
 
@@ -534,7 +412,8 @@ class Relaxation {
 
   Direction solved() {
     Positions2 d;
-    if (!system_.solve(T_, held_, g_, d)) d.assign(m_, Vec2::Zero());
+    for (Index i = 0; i < m_; ++i) g_movable_[i] = g_[setup_.movable[i]];
+    if (!system_.solve(T_, held_, g_movable_, d)) d.assign(m_, Vec2::Zero());
     for (Index i = 0; i < m_; ++i)
       if (on_vertex_[i] && !held_[i] && switched_[i] == 0 && !d[i].isZero(0))
         d[i] = redirected(i, d[i]);
@@ -691,6 +570,7 @@ class Relaxation {
   StepSystem system_;
   std::vector<Mat32> R_;  // the rotations of the current round
   Positions3 g_;          // the held-rotation energy's gradient at x_
+  Positions3 g_movable_;  // g_ of the movable vertices, for the step system
   double E_ = 0;          // the held-rotation energy at x_
 };
 
@@ -739,6 +619,9 @@ ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>
   setup.metric_start.assign(K.outerIndexPtr(), K.outerIndexPtr() + m + 1);
   setup.metric_column.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
   setup.metric_value.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+  if (m > 0)
+    setup.step_multigrid =
+        step_multigrid(setup.metric_start, setup.metric_column, setup.metric_value);
   return setup;
 }
 

@@ -4,6 +4,7 @@
 // ARAP: Sorkine & Alexa 2007; flip-free step bound: Smith & Schaefer 2015.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "elastic/chart.h"
 
 namespace skinslide {
+
+class AggregationMultigrid;
 
 /// When a frame's relaxation stops (README "Options").
 struct ElasticOptions {
@@ -42,6 +45,9 @@ struct ElasticSetup {
   std::vector<Index> metric_start;
   std::vector<Index> metric_column;
   std::vector<double> metric_value;
+  /// The multigrid hierarchy every frame's step systems are solved with (step_system.h); null
+  /// when nothing moves.
+  std::shared_ptr<const AggregationMultigrid> step_multigrid;
 };
 
 /// \param points bind positions of the patch's vertices (local ids); `triangles` index them.

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/types.h"
-#include "unwrap/multigrid.h"
+#include "solve/multigrid.h"
 
 namespace skinslide {
 
@@ -44,7 +44,7 @@ Positions2 solve_bar_net_multigrid(const BarNet& net, const std::vector<double>&
 enum class FrameNetMethod {
   Cholesky,   ///< sparse Cholesky (CHOLMOD LDL^T), ordering and symbolic analysis done once
   Cg,         ///< Jacobi-preconditioned CG warm-started at the bind net, x and y separately
-  Multigrid,  ///< CG preconditioned by an aggregation multigrid (unwrap/multigrid.h) built
+  Multigrid,  ///< CG preconditioned by an aggregation multigrid (solve/multigrid.h) built
               ///< once, warm-started at the bind net, x and y together
 };
 

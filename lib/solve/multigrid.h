@@ -1,8 +1,9 @@
-// An aggregation multigrid for the frame nets' systems: conjugate gradients preconditioned by a
-// K-cycle over pairwise aggregates (Notay 2010, "An aggregation-based algebraic multigrid method";
-// Notay & Vassilevski 2008, "Recursive Krylov-based multigrid cycles"). The aggregates and every
-// level's sparsity pattern are built once from one matrix; a solve only sums a new matrix's values
-// into the coarse levels, so frames whose densities differ share one hierarchy.
+// An aggregation multigrid for the per-frame systems of both methods (the paper's frame nets,
+// the elastic method's steps): conjugate gradients preconditioned by a K-cycle over pairwise
+// aggregates (Notay 2010, "An aggregation-based algebraic multigrid method"; Notay & Vassilevski
+// 2008, "Recursive Krylov-based multigrid cycles"). The aggregates and every level's sparsity
+// pattern are built once from one matrix; a solve only sums a new matrix's values into the coarse
+// levels, so frames whose systems differ share one hierarchy.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-#include "unwrap/multigrid.h"
+#include "solve/multigrid.h"
 
 #include <algorithm>
 #include <array>
