@@ -123,13 +123,19 @@ bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& hel
   Mat2 rhs = Mat2::Zero(2 * m, 2);
   for (Index i = 0; i < m; ++i)
     if (!held[i]) rhs.block<2, 1>(2 * i, 0) = -(frame[i].Q.transpose() * gradient[i]);
-  const std::vector<Index>& slot = multigrid_.value_slot();
-  for (size_t q = 0; q < slot.size(); ++q) level0_values_[q] = value[slot[q]];
   Mat2 x = Mat2::Zero(2 * m, 2);
-  const MultigridResult result =
-      multigrid_.solve(level0_values_, rhs, x, kStepTolerance, kMaxMultigridIterations);
-  multigrid_iterations += result.iterations;
-  if (!result.converged || !x.allFinite()) {
+  // A system no larger than the multigrid's coarsest level (a patch of up to about 100 movable
+  // vertices) is factorised directly, its ordering computed once per frame, not once per solve.
+  bool solved = false;
+  if (multigrid_.levels() > 1) {
+    const std::vector<Index>& slot = multigrid_.value_slot();
+    for (size_t q = 0; q < slot.size(); ++q) level0_values_[q] = value[slot[q]];
+    const MultigridResult result =
+        multigrid_.solve(level0_values_, rhs, x, kStepTolerance, kMaxMultigridIterations);
+    multigrid_iterations += result.iterations;
+    solved = result.converged && x.allFinite();
+  }
+  if (!solved) {
     ++direct_solves;
     if (!solve_directly(rhs, x)) return false;
   }
@@ -139,8 +145,8 @@ bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& hel
   return true;
 }
 
-// The multigrid stalls on systems far from K x I2 (neighbouring tangent planes far apart, as at a
-// crease of the frame): a sparse LDL^T factorisation solves those exactly.
+// Small systems, and those on which the multigrid stalls (far from K x I2: neighbouring tangent
+// planes far apart, as at a crease of the frame): a sparse LDL^T factorisation solves them.
 bool StepSystem::solve_directly(const Mat2& b, Mat2& x) {
   if (!analysed_) {
     direct_.analyzePattern(H_);

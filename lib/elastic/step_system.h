@@ -43,7 +43,7 @@ class StepSystem {
              const std::vector<Vec3>& gradient, Positions2& d);
 
   int multigrid_iterations = 0;  ///< over all solves so far
-  int direct_solves = 0;         ///< solves the multigrid handed to the sparse factorisation
+  int direct_solves = 0;  ///< solves by sparse factorisation: small systems, multigrid stalls
 
  private:
   bool solve_directly(const Eigen::Matrix<double, Eigen::Dynamic, 2>& b,

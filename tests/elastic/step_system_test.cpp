@@ -113,6 +113,26 @@ TEST(StepSystem, SolvesTheChartSystemToItsTolerance) {
   EXPECT_LT((x - x_exact).norm(), 1e-2 * x_exact.norm());
 }
 
+TEST(StepSystem, SmallPatchesAreSolvedExactly) {
+  const PolyMesh mesh = test::quad_grid_with_holes(6, 6, {});
+  const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
+  const ElasticSetup& e = *setup.patches[0].elastic;
+  ASSERT_EQ(e.step_multigrid->levels(), 1) << "25 movable vertices: the coarsest level only";
+  const std::vector<Mat32> T = smooth_jacobians(e);
+  std::vector<char> held(e.movable.size(), 0);
+  held[3] = 1;
+  const std::vector<Vec3> g = random_gradient(T.size(), 5);
+  StepSystem system(e.metric_start, e.metric_column, e.metric_value, *e.step_multigrid);
+  Positions2 d;
+  ASSERT_TRUE(system.solve(T, held, g, d));
+  EXPECT_EQ(system.direct_solves, 1);
+  EXPECT_EQ(system.multigrid_iterations, 0);
+  const Eigen::VectorXd r = chart_rhs(T, held, g);
+  // Exact but for the 1e-12 (of the mean diagonal) whisper of the identity.
+  EXPECT_LT((chart_system(e, T, held) * flat(d) - r).norm(), 1e-10 * r.norm());
+  EXPECT_EQ(d[3], Vec2::Zero());
+}
+
 TEST(StepSystem, CrushedJacobiansGiveFiniteSteps) {
   const auto e = grid_setup();
   std::vector<Mat32> T = smooth_jacobians(*e);
