@@ -13,7 +13,7 @@
 
 namespace skinslide {
 
-class AggregationMultigrid;
+struct StepMultigrid;
 
 /// When a frame's relaxation stops (README "Options").
 struct ElasticOptions {
@@ -47,7 +47,7 @@ struct ElasticSetup {
   std::vector<double> metric_value;
   /// The multigrid hierarchy every frame's step systems are solved with (step_system.h); null
   /// when nothing moves.
-  std::shared_ptr<const AggregationMultigrid> step_multigrid;
+  std::shared_ptr<const StepMultigrid> step_multigrid;
 };
 
 /// \param points bind positions of the patch's vertices (local ids); `triangles` index them.

@@ -62,9 +62,9 @@ SparseMatrix step_pattern(const std::vector<Index>& start, const std::vector<Ind
   return H;
 }
 
-std::shared_ptr<const AggregationMultigrid> step_multigrid(const std::vector<Index>& start,
-                                                           const std::vector<Index>& column,
-                                                           const std::vector<double>& value) {
+std::shared_ptr<const StepMultigrid> step_multigrid(const std::vector<Index>& start,
+                                                    const std::vector<Index>& column,
+                                                    const std::vector<double>& value) {
   const Index m = static_cast<Index>(start.size()) - 1;
   std::vector<double> lumped(m, 0.0);
   for (Index j = 0; j < m; ++j)
@@ -78,17 +78,21 @@ std::shared_ptr<const AggregationMultigrid> step_multigrid(const std::vector<Ind
       for (Index e = start[j]; e < start[j + 1]; ++e)
         for (int c = 0; c < 2; ++c, ++k)
           if (c == b) a[k] = column[e] == j ? lumped[j] : std::min(value[e], 0.0);
-  return std::make_shared<const AggregationMultigrid>(A);
+  AggregationMultigrid hierarchy(A);
+  std::vector<Index> level0_slot(hierarchy.value_slot().size());
+  for (size_t q = 0; q < level0_slot.size(); ++q)
+    level0_slot[hierarchy.value_slot()[q]] = static_cast<Index>(q);
+  return std::make_shared<const StepMultigrid>(
+      StepMultigrid{std::move(hierarchy), std::move(level0_slot)});
 }
 
 StepSystem::StepSystem(const std::vector<Index>& start, const std::vector<Index>& column,
-                       const std::vector<double>& value, const AggregationMultigrid& multigrid)
+                       const std::vector<double>& value, const StepMultigrid& multigrid)
     : start_(start),
       column_(column),
       value_(value),
       multigrid_(multigrid),
-      H_(step_pattern(start, column)),
-      level0_values_(multigrid.value_slot().size()) {}
+      values_(multigrid.level0_slot.size()) {}
 
 bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& held,
                        const std::vector<Vec3>& gradient, Positions2& d) {
@@ -96,7 +100,6 @@ bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& hel
   std::vector<TangentFrame> frame(m);
   for (Index i = 0; i < m; ++i)
     if (!held[i]) frame[i] = tangent_frame(T[i]);
-  double* value = H_.valuePtr();
   Index k = 0;
   double trace = 0;
   for (Index j = 0; j < m; ++j)
@@ -104,11 +107,12 @@ bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& hel
       for (Index e = start_[j]; e < start_[j + 1]; ++e) {
         const Index i = column_[e];
         for (int a = 0; a < 2; ++a, ++k) {
+          double& v = entry(k);
           if (held[i] || held[j])
-            value[k] = (i == j && a == b) ? 1.0 : 0.0;
+            v = (i == j && a == b) ? 1.0 : 0.0;
           else
-            value[k] = value_[e] * frame[i].Q.col(a).dot(frame[j].Q.col(b));
-          if (i == j && a == b) trace += value[k];
+            v = value_[e] * frame[i].Q.col(a).dot(frame[j].Q.col(b));
+          if (i == j && a == b) trace += v;
         }
       }
   // A frame triangle crushed to a line leaves its vertices' blocks singular: a whisper of the
@@ -119,7 +123,7 @@ bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& hel
     for (int b = 0; b < 2; ++b)
       for (Index e = start_[j]; e < start_[j + 1]; ++e)
         for (int a = 0; a < 2; ++a, ++k)
-          if (column_[e] == j && a == b) value[k] += mu;
+          if (column_[e] == j && a == b) entry(k) += mu;
   Mat2 rhs = Mat2::Zero(2 * m, 2);
   for (Index i = 0; i < m; ++i)
     if (!held[i]) rhs.block<2, 1>(2 * i, 0) = -(frame[i].Q.transpose() * gradient[i]);
@@ -127,11 +131,9 @@ bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& hel
   // A system no larger than the multigrid's coarsest level (a patch of up to about 100 movable
   // vertices) is factorised directly, its ordering computed once per frame, not once per solve.
   bool solved = false;
-  if (multigrid_.levels() > 1) {
-    const std::vector<Index>& slot = multigrid_.value_slot();
-    for (size_t q = 0; q < slot.size(); ++q) level0_values_[q] = value[slot[q]];
+  if (multigrid_.hierarchy.levels() > 1) {
     const MultigridResult result =
-        multigrid_.solve(level0_values_, rhs, x, kStepTolerance, kMaxMultigridIterations);
+        multigrid_.hierarchy.solve(values_, rhs, x, kStepTolerance, kMaxMultigridIterations);
     multigrid_iterations += result.iterations;
     solved = result.converged && x.allFinite();
   }
@@ -148,10 +150,12 @@ bool StepSystem::solve(const std::vector<Mat32>& T, const std::vector<char>& hel
 // Small systems, and those on which the multigrid stalls (far from K x I2: neighbouring tangent
 // planes far apart, as at a crease of the frame): a sparse LDL^T factorisation solves them.
 bool StepSystem::solve_directly(const Mat2& b, Mat2& x) {
-  if (!analysed_) {
+  if (H_.size() == 0) {
+    H_ = step_pattern(start_, column_);
     direct_.analyzePattern(H_);
-    analysed_ = true;
   }
+  const std::vector<Index>& slot = multigrid_.hierarchy.value_slot();
+  for (size_t k = 0; k < slot.size(); ++k) H_.valuePtr()[slot[k]] = values_[k];
   direct_.factorize(H_);
   if (direct_.info() != Eigen::Success) return false;
   x.col(0) = direct_.solve(b.col(0));

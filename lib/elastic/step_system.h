@@ -21,12 +21,19 @@ using Mat32 = Eigen::Matrix<double, 3, 2>;
 /// ascending, all values zero.
 SparseMatrix step_pattern(const std::vector<Index>& start, const std::vector<Index>& column);
 
-/// The multigrid hierarchy for every step system of a patch, built at bind time from K's
-/// nearest M-matrix (each positive off-diagonal entry, from an obtuse bind angle, moved onto the
-/// diagonals it couples) times I2: the aggregates pair x with x and y with y.
-std::shared_ptr<const AggregationMultigrid> step_multigrid(const std::vector<Index>& start,
-                                                           const std::vector<Index>& column,
-                                                           const std::vector<double>& value);
+/// The multigrid for every step system of a patch, built at bind time from K's nearest M-matrix
+/// (each positive off-diagonal entry, from an obtuse bind angle, moved onto the diagonals it
+/// couples) times I2: the aggregates pair x with x and y with y.
+struct StepMultigrid {
+  AggregationMultigrid hierarchy;
+  /// Per nonzero of step_pattern, in its order: the level-0 nonzero that holds it, so that a
+  /// frame assembles its system straight into the multigrid's order.
+  std::vector<Index> level0_slot;
+};
+
+std::shared_ptr<const StepMultigrid> step_multigrid(const std::vector<Index>& start,
+                                                    const std::vector<Index>& column,
+                                                    const std::vector<double>& value);
 
 /// One frame's step systems: (T^T (K x I3) T + mu I) d = -T^T g over the movable vertices, held
 /// vertices' rows and columns the identity's. Holds its work arrays; one per frame and thread.
@@ -35,7 +42,7 @@ class StepSystem {
   /// `start`, `column`, `value`: K over the movable vertices, compressed rows (both triangles);
   /// `multigrid`: step_multigrid of the same K. All must outlive the StepSystem.
   StepSystem(const std::vector<Index>& start, const std::vector<Index>& column,
-             const std::vector<double>& value, const AggregationMultigrid& multigrid);
+             const std::vector<double>& value, const StepMultigrid& multigrid);
 
   /// Solves for d (per movable vertex; zero where held) given each vertex's Jacobian T, held
   /// flags and the energy's 3D gradient g per movable vertex. False when no solve succeeds.
@@ -48,15 +55,15 @@ class StepSystem {
  private:
   bool solve_directly(const Eigen::Matrix<double, Eigen::Dynamic, 2>& b,
                       Eigen::Matrix<double, Eigen::Dynamic, 2>& x);
+  double& entry(Index nonzero) { return values_[multigrid_.level0_slot[nonzero]]; }
 
   const std::vector<Index>& start_;
   const std::vector<Index>& column_;
   const std::vector<double>& value_;
-  const AggregationMultigrid& multigrid_;
-  SparseMatrix H_;                     // the tangent-coordinate system, step_pattern's pattern
-  std::vector<double> level0_values_;  // H_'s values in the multigrid's order
+  const StepMultigrid& multigrid_;
+  std::vector<double> values_;  // the tangent-coordinate system, in the multigrid's level-0 order
+  SparseMatrix H_;              // the same for a direct solve, step_pattern's (built on demand)
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> direct_;
-  bool analysed_ = false;
 };
 
 }  // namespace skinslide

@@ -82,7 +82,7 @@ TEST(StepSystem, HierarchyHasSeveralLevels) {
   const auto e = grid_setup();
   ASSERT_TRUE(e && e->step_multigrid);
   EXPECT_GT(e->movable.size(), 1500u);
-  EXPECT_GE(e->step_multigrid->levels(), 3);
+  EXPECT_GE(e->step_multigrid->hierarchy.levels(), 3);
 }
 
 TEST(StepSystem, SolvesTheChartSystemToItsTolerance) {
@@ -117,7 +117,8 @@ TEST(StepSystem, SmallPatchesAreSolvedExactly) {
   const PolyMesh mesh = test::quad_grid_with_holes(6, 6, {});
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
   const ElasticSetup& e = *setup.patches[0].elastic;
-  ASSERT_EQ(e.step_multigrid->levels(), 1) << "25 movable vertices: the coarsest level only";
+  ASSERT_EQ(e.step_multigrid->hierarchy.levels(), 1)
+      << "25 movable vertices: the coarsest level only";
   const std::vector<Mat32> T = smooth_jacobians(e);
   std::vector<char> held(e.movable.size(), 0);
   held[3] = 1;
