@@ -13,105 +13,193 @@
 #include "core/error.h"
 #include "locate/barycentric.h"
 #include "locate/locate.h"
+#include "solve/smoothed_aggregation.h"
 
 namespace skinslide {
 namespace {
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// tan(angle/2) between e1 and e2, from sin/(1 + cos): stable down to zero angles.
-double half_angle_tangent(const Vec3& e1, const Vec3& e2) {
+// tan(angle/2) between e1 and e2 (of lengths l1, l2), from sin/(1 + cos): stable down to zero
+// angles.
+double half_angle_tangent(const Vec3& e1, const Vec3& e2, double l1, double l2) {
   const double s = e1.cross(e2).norm();
-  const double c = e1.norm() * e2.norm() + e1.dot(e2);
+  const double c = l1 * l2 + e1.dot(e2);
   if (!(c > 0)) return s > 0 ? 1e12 : 0.0;  // a straight angle: as steep as we allow
   return std::min(s / c, 1e12);
 }
 
-// Node positions of the filled disk for the given weights (uniform or mean value); the outer
-// loop's nodes are fixed at `outer_uv`.
-Positions2 embed(const Positions3& x3, const std::vector<Triangle>& triangles,
-                 const std::vector<Index>& outer, const Positions2& outer_uv, bool mean_value) {
+// The embedding's linear system: row r is node `node[r]` (every node off the outer loop, in node
+// order), (sum_j a_ij) u_i - sum_j a_ij u_j = 0 with the outer loop's nodes moved to the right-hand
+// side; both coordinates at once. Every sum has a fixed order (an edge's weight over its
+// triangles in triangle order, a row's sums in ascending neighbour order): the order of the
+// triplet assembly this replaced, so that the direct solve gives, bit for bit, the charts it gave.
+struct EmbeddingSystem {
+  std::vector<Index> slot;  // node -> row; -1 on the outer loop
+  std::vector<Index> node;  // row -> node
+  RowMatrix L;
+  Eigen::MatrixX2d rhs;
+};
+
+// One corner's view of one of its edges: the other end and its mean-value weight (none for an
+// edge of zero length).
+struct Incidence {
+  Index j;
+  bool weighted;
+  double w;
+};
+
+EmbeddingSystem embedding_system(const Positions3& x3, const std::vector<Triangle>& triangles,
+                                 const std::vector<Index>& outer, const Positions2& outer_uv,
+                                 bool mean_value) {
   const Index n = static_cast<Index>(x3.size());
-  // Row i of the weights, as (j, w) pairs; summed into a sparse matrix.
-  std::vector<Triplet> w;
-  std::vector<Triplet> uniform;
-  w.reserve(triangles.size() * 6);
-  uniform.reserve(triangles.size() * 6);
-  for (const Triangle& t : triangles)
-    for (int k = 0; k < 3; ++k) {
-      const Index i = t[k], j = t[(k + 1) % 3], l = t[(k + 2) % 3];
-      // Each undirected edge appears in one or two triangles: the 0.5 makes inner edges 1.
-      uniform.emplace_back(i, j, 0.5);
-      uniform.emplace_back(i, l, 0.5);
-      if (!mean_value) continue;
-      const Vec3 eij = x3[j] - x3[i], eil = x3[l] - x3[i];
-      const double tn = half_angle_tangent(eij, eil);
-      const double lij = eij.norm(), lil = eil.norm();
-      if (lij > 0) w.emplace_back(i, j, tn / lij);
-      if (lil > 0) w.emplace_back(i, l, tn / lil);
-    }
-  SparseMatrix U(n, n), W(n, n);
-  U.setFromTriplets(uniform.begin(), uniform.end());
-  for (int k = 0; k < U.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(U, k); it; ++it) it.valueRef() = 1.0;
-  const Eigen::VectorXd u_rows = U * Eigen::VectorXd::Ones(n);
-  SparseMatrix A(n, n);
-  if (mean_value) {
-    W.setFromTriplets(w.begin(), w.end());
-    Eigen::VectorXd rows = W * Eigen::VectorXd::Ones(n);
-    // Row-normalised mean-value weights, plus a 1e-9 share of uniform ones so that every edge
-    // weighs strictly more than zero (a zero-length edge or a flat corner gives a zero weight).
-    std::vector<Triplet> all;
-    for (int k = 0; k < W.outerSize(); ++k)
-      for (SparseMatrix::InnerIterator it(W, k); it; ++it)
-        if (rows[it.row()] > 0 && std::isfinite(rows[it.row()]) && std::isfinite(it.value()))
-          all.emplace_back(it.row(), it.col(), it.value() / rows[it.row()]);
-    for (int k = 0; k < U.outerSize(); ++k)
-      for (SparseMatrix::InnerIterator it(U, k); it; ++it)
-        all.emplace_back(it.row(), it.col(), 1e-9 / u_rows[it.row()]);
-    A.setFromTriplets(all.begin(), all.end());
-  } else {
-    A = U;
-  }
+  EmbeddingSystem sys;
+  sys.slot.assign(n, -1);
   std::vector<char> fixed(n, 0);
   for (Index v : outer) fixed[v] = 1;
-  std::vector<Index> slot(n, -1);
-  Index m = 0;
   for (Index v = 0; v < n; ++v)
-    if (!fixed[v]) slot[v] = m++;
-  Positions2 uv(n, Vec2::Zero());
-  for (size_t k = 0; k < outer.size(); ++k) uv[outer[k]] = outer_uv[k];
-  if (m == 0) return uv;
-  // Row i: (sum_j a_ij) u_i - sum_j a_ij u_j = 0 for every node not on the outer loop.
-  std::vector<Triplet> lt;
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(m, 2);
-  for (int k = 0; k < A.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
-      const Index i = static_cast<Index>(it.row()), j = static_cast<Index>(it.col());
-      if (fixed[i] || i == j) continue;
-      lt.emplace_back(slot[i], slot[i], it.value());
-      if (fixed[j])
-        rhs.row(slot[i]) += it.value() * uv[j].transpose();
-      else
-        lt.emplace_back(slot[i], slot[j], -it.value());
+    if (!fixed[v]) {
+      sys.slot[v] = static_cast<Index>(sys.node.size());
+      sys.node.push_back(v);
     }
-  SparseMatrix L(m, m);
-  L.setFromTriplets(lt.begin(), lt.end());
-  L.makeCompressed();
+  const Index m = static_cast<Index>(sys.node.size());
+  // The corners of each row's node (3 t + k: corner k of triangle t), in triangle order.
+  std::vector<Index> first(static_cast<size_t>(m) + 1, 0);
+  for (const Triangle& t : triangles)
+    for (Index v : t)
+      if (sys.slot[v] >= 0) ++first[sys.slot[v] + 1];
+  for (Index r = 0; r < m; ++r) first[r + 1] += first[r];
+  std::vector<Index> around(first.back());
+  {
+    std::vector<Index> next(first.begin(), first.end() - 1);
+    for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t)
+      for (int k = 0; k < 3; ++k)
+        if (sys.slot[triangles[t][k]] >= 0) around[next[sys.slot[triangles[t][k]]]++] = 3 * t + k;
+  }
+  Positions2 uv_fixed(n, Vec2::Zero());
+  for (size_t k = 0; k < outer.size(); ++k) uv_fixed[outer[k]] = outer_uv[k];
+  RowMatrix& L = sys.L;
+  L.rows = m;
+  L.start.assign(1, 0);
+  L.column.reserve(2 * around.size() + static_cast<size_t>(m));
+  L.value.reserve(2 * around.size() + static_cast<size_t>(m));
+  sys.rhs = Eigen::MatrixX2d::Zero(m, 2);
+  // A row's distinct neighbours, ascending, an edge's weights from its two triangles summed (a sum
+  // of two terms: their order cannot matter).
+  std::vector<Incidence> edges(16);
+  std::vector<Index> seen(n, -1);      // node -> its entry in `edges`...
+  std::vector<Index> seen_row(n, -1);  // ... for this row
+  for (Index r = 0; r < m; ++r) {
+    const Index i = sys.node[r];
+    size_t kept = 0;
+    const auto add = [&](Index j, double length, double tn) {
+      const Incidence e{j, length > 0, length > 0 ? tn / length : 0.0};
+      if (seen_row[j] == r) {
+        Incidence& f = edges[seen[j]];
+        if (e.weighted) f.w = f.weighted ? f.w + e.w : e.w;
+        f.weighted = f.weighted || e.weighted;
+        return;
+      }
+      if (kept == edges.size()) edges.resize(2 * kept);
+      seen_row[j] = r;
+      seen[j] = static_cast<Index>(kept);
+      edges[kept++] = e;
+    };
+    for (Index q = first[r]; q < first[r + 1]; ++q) {
+      // w_ij += tan(angle_i / 2) / |x_j - x_i| over the triangles with corner i and edge ij.
+      const Triangle& t = triangles[around[q] / 3];
+      const int k = around[q] % 3;
+      const Index j = t[(k + 1) % 3], l = t[(k + 2) % 3];
+      if (!mean_value) {
+        add(j, 0, 0);
+        add(l, 0, 0);
+        continue;
+      }
+      const Vec3 eij = x3[j] - x3[i], eil = x3[l] - x3[i];
+      const double lij = eij.norm(), lil = eil.norm();
+      const double tn = half_angle_tangent(eij, eil, lij, lil);
+      add(j, lij, tn);
+      add(l, lil, tn);
+    }
+    const auto by_node = [](const Incidence& a, const Incidence& b) { return a.j < b.j; };
+    if (kept > 32)  // a hole's centre: as many neighbours as its loop has vertices
+      std::sort(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(kept), by_node);
+    else  // insertion sort: a handful of neighbours
+      for (size_t q = 1; q < kept; ++q)
+        for (size_t p = q; p > 0 && by_node(edges[p], edges[p - 1]); --p)
+          std::swap(edges[p], edges[p - 1]);
+    // a_ij: the row-normalised mean-value weight plus 1e-9 / deg(i), so that every edge weighs
+    // strictly more than zero (a zero-length edge or a flat corner gives a zero weight); or 1.
+    const double uniform = 1e-9 / static_cast<double>(kept);
+    double row = 0;
+    if (mean_value)
+      for (size_t q = 0; q < kept; ++q)
+        if (edges[q].weighted) row += edges[q].w;
+    const bool normalise = mean_value && row > 0 && std::isfinite(row);
+    double diagonal = 0;
+    bool first_term = true;
+    Index diagonal_at = -1;
+    for (size_t q = 0; q < kept; ++q) {
+      const Incidence& e = edges[q];
+      const Index j = e.j;
+      if (j == i) continue;
+      const double aij = !mean_value                                     ? 1.0
+                         : normalise && e.weighted && std::isfinite(e.w) ? e.w / row + uniform
+                                                                         : uniform;
+      diagonal = first_term ? aij : diagonal + aij;
+      first_term = false;
+      if (fixed[j]) {
+        sys.rhs.row(r) += aij * uv_fixed[j].transpose();
+        continue;
+      }
+      if (diagonal_at < 0 && j > i) {
+        diagonal_at = static_cast<Index>(L.column.size());
+        L.column.push_back(r);
+        L.value.push_back(0.0);
+      }
+      L.column.push_back(sys.slot[j]);
+      L.value.push_back(-aij);
+    }
+    if (diagonal_at < 0) {
+      diagonal_at = static_cast<Index>(L.column.size());
+      L.column.push_back(r);
+      L.value.push_back(0.0);
+    }
+    L.value[diagonal_at] = diagonal;
+    L.start.push_back(static_cast<Index>(L.column.size()));
+  }
+  return sys;
+}
+
+// The nodes' chart positions from the system's solution (the outer loop's as given).
+Positions2 scatter(const EmbeddingSystem& sys, const Eigen::MatrixX2d& x,
+                   const std::vector<Index>& outer, const Positions2& outer_uv) {
+  Positions2 uv(sys.slot.size(), Vec2::Zero());
+  for (size_t k = 0; k < outer.size(); ++k) uv[outer[k]] = outer_uv[k];
+  for (size_t r = 0; r < sys.node.size(); ++r) uv[sys.node[r]] = x.row(r).transpose();
+  return uv;
+}
+
+// One sparse LU solve (COLAMD order).
+Eigen::MatrixX2d solve_directly(const EmbeddingSystem& sys) {
+  const RowMatrix& L = sys.L;
+  const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, Index>> rows(
+      L.rows, L.rows, static_cast<Index>(L.column.size()), L.start.data(), L.column.data(),
+      L.value.data());
+  SparseMatrix A = rows;
+  A.makeCompressed();
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
-  lu.compute(L);
+  lu.compute(A);
   if (lu.info() != Eigen::Success)
     throw Error(ErrorKind::Numeric, "the chart's embedding cannot be solved");
-  const Eigen::MatrixX2d x = lu.solve(rhs);
-  for (Index v = 0; v < n; ++v)
-    if (!fixed[v]) uv[v] = x.row(slot[v]).transpose();
-  return uv;
+  return lu.solve(sys.rhs);
 }
 
 }  // namespace
 
 Chart disk_chart(const Positions3& points, const std::vector<Triangle>& triangles,
-                 const std::vector<std::vector<Index>>& loops, Index outer_loop) {
+                 const std::vector<std::vector<Index>>& loops, Index outer_loop,
+                 const ChartSolver& solver) {
   SKINSLIDE_CHECK(outer_loop >= 0 && outer_loop < static_cast<Index>(loops.size()), "outer loop");
   const Index n = static_cast<Index>(points.size());
   Chart chart;
@@ -147,8 +235,9 @@ Chart disk_chart(const Positions3& points, const std::vector<Triangle>& triangle
   const auto area = [&](const Positions2& uv, const Triangle& t) {
     return cross2(uv[t[1]] - uv[t[0]], uv[t[2]] - uv[t[0]]);
   };
-  for (const bool mean_value : {true, false}) {
-    Positions2 uv = embed(x3, chart.triangles, outer, outer_uv, mean_value);
+  // Mirrors uv if most patch triangles come out clockwise and winds the fill triangles
+  // counter-clockwise (into `wound`); false if a triangle then has no area.
+  const auto oriented = [&](Positions2& uv, std::vector<Triangle>& wound) {
     Index positive = 0, negative = 0;
     for (Index t = 0; t < chart.patch_triangle_count; ++t) {
       const double a = area(uv, chart.triangles[t]);
@@ -157,18 +246,43 @@ Chart disk_chart(const Positions3& points, const std::vector<Triangle>& triangle
     }
     if (negative > positive)
       for (Vec2& p : uv) p.y() = 1.0 - p.y();  // mirror: the patch's triangles counter-clockwise
+    wound = chart.triangles;
     bool flat = false;
-    for (size_t t = 0; t < chart.triangles.size(); ++t) {
-      Triangle& tri = chart.triangles[t];
+    for (size_t t = 0; t < wound.size(); ++t) {
+      Triangle& tri = wound[t];
       if (static_cast<Index>(t) >= chart.patch_triangle_count && area(uv, tri) < 0)
         std::swap(tri[1], tri[2]);  // fill triangles follow the chart, not the hole's winding
       flat = flat || !(area(uv, tri) > 0);
     }
-    if (!flat) {
+    return !flat;
+  };
+  // Mean-value weights, else uniform ones; each solved iteratively when the system is large (an
+  // approximate solution is kept only when every triangle has area), else, or then, directly.
+  for (const bool mean_value : {true, false}) {
+    const EmbeddingSystem sys = embedding_system(x3, chart.triangles, outer, outer_uv, mean_value);
+    const Index rows = sys.L.rows;
+    bool done = false;
+    for (const bool iterative : {true, false}) {
+      if (iterative && (rows == 0 || rows < solver.iterative_from)) continue;
+      Eigen::MatrixX2d x = Eigen::MatrixX2d::Zero(rows, 2);
+      if (iterative) {
+        if (!solve_smoothed_aggregation(sys.L, sys.rhs, x, solver.tolerance, solver.max_iterations)
+                 .converged)
+          continue;
+      } else if (rows > 0) {
+        x = solve_directly(sys);
+      }
+      Positions2 uv = scatter(sys, x, outer, outer_uv);
+      std::vector<Triangle> wound;
+      if (!oriented(uv, wound)) continue;
       chart.uv = std::move(uv);
+      chart.triangles = std::move(wound);
       chart.uniform_weights = !mean_value;
+      chart.iterative = iterative;
+      done = true;
       break;
     }
+    if (done) break;
   }
   if (chart.uv.empty())
     throw Error(ErrorKind::Numeric,

@@ -14,7 +14,8 @@ namespace skinslide {
 /// (1/2, 1/2), spaced by bind arc length from the loop's first vertex (angle 0, turning so that
 /// the patch's triangles are counter-clockwise); every hole closed by a virtual centre node; every
 /// other node where its mean-value weights (Floater 2003) on the bind balance it. A convex border
-/// and positive weights make the embedding injective (Tutte, Floater).
+/// and positive weights make the embedding injective (Tutte, Floater); a chart is kept only when
+/// every triangle has positive area, whichever solve gave it.
 ///
 /// Nodes: the patch's vertices (local ids 0..n-1), then one centre per hole, in loop order.
 /// Triangles: the patch's triangles first (same ids and corners as given), then each hole's fill
@@ -29,6 +30,20 @@ struct Chart {
   std::vector<Index> corner_start;
   std::vector<Index> corner_triangles;
   bool uniform_weights = false;  ///< mean-value weights gave a flat triangle; Tutte's were used
+  bool iterative = false;        ///< positions from the iterative solve, not the sparse LU one
+};
+
+/// How disk_chart solves its embedding's linear system; the defaults are the elastic method's
+/// (lib/elastic/README.md rule 2), tests vary them.
+struct ChartSolver {
+  /// Systems of at least this many rows (the nodes off the outer loop) are solved iteratively
+  /// first: BiCGSTAB preconditioned by smoothed-aggregation multigrid
+  /// (solve/smoothed_aggregation.h), from zero. Smaller systems, and those whose iterative
+  /// solution does not converge or leaves a chart triangle without area, are solved by one sparse
+  /// LU factorisation (COLAMD order).
+  Index iterative_from = 1000;
+  double tolerance = 1e-9;   ///< iterative: converged at |b - A x| <= tolerance |b| per column
+  int max_iterations = 100;  ///< iterative: BiCGSTAB iterations at most (about 10 are taken)
 };
 
 /// Builds the chart of one patch (a disk with holes, consistently oriented).
@@ -37,7 +52,8 @@ struct Chart {
 /// \throw Error(Numeric) when even uniform weights leave a chart triangle without area.
 /// \throw Error(Input) when the outer loop has zero length.
 Chart disk_chart(const Positions3& points, const std::vector<Triangle>& triangles,
-                 const std::vector<std::vector<Index>>& loops, Index outer_loop);
+                 const std::vector<std::vector<Index>>& loops, Index outer_loop,
+                 const ChartSolver& solver = {});
 
 /// A point of the chart on a patch triangle: barycentric weights, each in [0, 1], summing to 1.
 struct ChartPoint {

@@ -270,7 +270,6 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
   }
   patch.skipped = patch.free_vertices.empty();
   if (patch.skipped) return patch;  // nothing to move: no unwrap needed, whatever the loops
-  patch.topology = triangle_topology(patch.triangles, static_cast<Index>(patch.vertices.size()));
   if (options.method == SlideMethod::Elastic) {
     // A vertex of weight 0 is held where the frame puts it, and the skin around it slides.
     std::vector<Index> movable;
@@ -286,6 +285,9 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
     return patch;
   }
 
+  // The frame nets' triangle neighbours, for the walks that locate points in them (the elastic
+  // method walks in its chart, which has neighbours of its own).
+  patch.topology = triangle_topology(patch.triangles, static_cast<Index>(patch.vertices.size()));
   const auto& outer = patch.loops[patch.outer_loop];
   SquareBoundary square;
   if (choice.has_corners) {

@@ -1,14 +1,15 @@
 // Per-stage timings of skinslide's pipeline, calling the library stages directly.
 //
 //   skinslide_bench_stages [-r REPEAT] [-m paper|elastic] [-s auto|cholesky|multigrid|cg]
-//   [-l walk|image] -o DIR BIND PATCH FRAME...
+//   [-l walk|image] [-b] -o DIR BIND PATCH FRAME...
 //       bind read and set-up, then per frame: read (+ topology check); with -m paper (the
 //       default here, the stages scripts/bench.sh tabulates) frame net (force densities + solve,
 //       with CG iterations), ID image (-l image), locate, transfer; with -m elastic (the
 //       command's default method) relax (with its iterations); then write, plus slide_frame as a
 //       whole. Prints "name median_ms" lines (medians over frames x repeats). -s and -l are
-//       paper options, refused with -m elastic as the command refuses them. The I/O floor of a
-//       run is the command's own --no-slide.
+//       paper options, refused with -m elastic as the command refuses them. -b times the bind
+//       read and set-up only (no FRAME needed; the elastic relax of a large patch takes minutes).
+//       The I/O floor of a run is the command's own --no-slide.
 // Stage times are the thread's CPU time in milliseconds.
 
 #include <algorithm>
@@ -165,6 +166,7 @@ int main(int argc, char** argv) {
     SlideOptions options;
     options.method = SlideMethod::Paper;
     bool paper_only = false;
+    bool bind_only = false;
     std::vector<std::string> args;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -176,19 +178,23 @@ int main(int argc, char** argv) {
         options.locate = parse_locate(argv[++i]), paper_only = true;
       else if (a == "-s" && i + 1 < argc)
         options.frame_solver = parse_frame_solver(argv[++i]), paper_only = true;
+      else if (a == "-b")
+        bind_only = true;
       else if (a == "-o" && i + 1 < argc)
         out_dir = argv[++i];
       else
         args.push_back(a);
     }
-    if (out_dir.empty() || args.size() < 3u ||
+    if (out_dir.empty() || args.size() < (bind_only ? 2u : 3u) ||
         (paper_only && options.method != SlideMethod::Paper)) {
       std::fprintf(stderr,
                    "usage: skinslide_bench_stages [-r REPEAT] [-m paper|elastic] [-s "
-                   "auto|cholesky|multigrid|cg] [-l walk|image] -o DIR BIND PATCH FRAME...\n"
-                   "  (-s and -l apply to -m paper only)\n");
+                   "auto|cholesky|multigrid|cg] [-l walk|image] [-b] -o DIR BIND PATCH FRAME...\n"
+                   "  (-s and -l apply to -m paper only; -b: bind read and set-up only, no "
+                   "frames)\n");
       return 2;
     }
+    if (bind_only) args.resize(2);
     return stages(repeat, options, out_dir, args);
   } catch (const Error& e) {
     std::fprintf(stderr, "skinslide_bench_stages: error: %s\n", e.what());

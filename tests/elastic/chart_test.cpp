@@ -2,6 +2,7 @@
 // that finds every point.
 #include "elastic/chart.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -33,7 +34,8 @@ Disk grid_disk(const PolyMesh& mesh) {
   d.points = mesh.positions;
   for (Index f = 0; f < mesh.face_count(); ++f) {
     const Index* v = mesh.face_begin(f);
-    for (Index k = 0; k + 2 < mesh.face_size(f); ++k) d.triangles.push_back({v[0], v[k + 1], v[k + 2]});
+    for (Index k = 0; k + 2 < mesh.face_size(f); ++k)
+      d.triangles.push_back({v[0], v[k + 1], v[k + 2]});
   }
   const auto comps = patch_components(mesh, {test::all_faces(mesh)},
                                       [](Index f) { return "face " + std::to_string(f); });
@@ -90,7 +92,8 @@ TEST(Chart, TheWalkFindsEveryPointOnAPatchTriangle) {
     }
     EXPECT_NEAR(sum, 1, 1e-15);
     const Triangle& t = c.triangles[q.triangle];
-    const Vec2 back = q.weight[0] * c.uv[t[0]] + q.weight[1] * c.uv[t[1]] + q.weight[2] * c.uv[t[2]];
+    const Vec2 back =
+        q.weight[0] * c.uv[t[0]] + q.weight[1] * c.uv[t[1]] + q.weight[2] * c.uv[t[2]];
     // Inside the border polygon (40 vertices on the circle: its chords dip 1.5e-3 inside).
     const bool in_disk = (p - Vec2(0.5, 0.5)).norm() < 0.49;
     bool in_hole = false;
@@ -102,6 +105,84 @@ TEST(Chart, TheWalkFindsEveryPointOnAPatchTriangle) {
       EXPECT_LT((back - p).norm(), 1e-12) << "a point inside the patch is found exactly";
     }
   }
+}
+
+// A bent grid with three holes, large enough for the iterative solve (1 600 nodes).
+Disk bent_grid_disk() {
+  PolyMesh mesh = test::quad_grid_with_holes(40, 40, {505, 506, 545, 1010, 1011, 1212});
+  for (Vec3& p : mesh.positions)
+    p.z() = 0.3 * std::sin(0.3 * p.x()) * std::cos(0.15 * p.y()) + 0.002 * p.x() * p.y();
+  return grid_disk(mesh);
+}
+
+ChartSolver direct_only() {
+  ChartSolver s;
+  s.iterative_from = 1 << 30;
+  return s;
+}
+
+void expect_same_bits(const Chart& a, const Chart& b) {
+  ASSERT_EQ(a.uv.size(), b.uv.size());
+  for (size_t v = 0; v < a.uv.size(); ++v) {
+    EXPECT_EQ(a.uv[v].x(), b.uv[v].x()) << "node " << v;
+    EXPECT_EQ(a.uv[v].y(), b.uv[v].y()) << "node " << v;
+  }
+  EXPECT_EQ(a.triangles, b.triangles);
+}
+
+TEST(Chart, TheIterativeSolveGivesTheDirectSolvesChart) {
+  const Disk d = bent_grid_disk();
+  ASSERT_EQ(d.loops.size(), 4u);
+  const Chart iterative = disk_chart(d.points, d.triangles, d.loops, d.outer);
+  const Chart direct = disk_chart(d.points, d.triangles, d.loops, d.outer, direct_only());
+  EXPECT_TRUE(iterative.iterative) << "the default solve of a system this large";
+  EXPECT_FALSE(direct.iterative);
+  EXPECT_FALSE(iterative.uniform_weights);
+  ASSERT_EQ(iterative.uv.size(), direct.uv.size());
+  double largest = 0;
+  for (size_t v = 0; v < direct.uv.size(); ++v)
+    largest = std::max(largest, (iterative.uv[v] - direct.uv[v]).norm());
+  EXPECT_LT(largest, 1e-8) << "a residual of 1e-9 of the right-hand side";
+  EXPECT_EQ(iterative.triangles, direct.triangles) << "the same winding of the fill triangles";
+  for (Index t = 0; t < static_cast<Index>(iterative.triangles.size()); ++t)
+    EXPECT_GT(signed_area(iterative, t), 0) << "triangle " << t;
+}
+
+TEST(Chart, AnIterativeSolutionThatLeavesAFlatTriangleGivesWayToTheDirectSolve) {
+  const Disk d = bent_grid_disk();
+  // A tolerance of 1 accepts the zero start: every free node at (0, 0), every triangle flat.
+  ChartSolver inexact;
+  inexact.iterative_from = 0;
+  inexact.tolerance = 1;
+  const Chart c = disk_chart(d.points, d.triangles, d.loops, d.outer, inexact);
+  EXPECT_FALSE(c.iterative);
+  EXPECT_FALSE(c.uniform_weights) << "the direct solve of the mean-value weights, not Tutte's";
+  expect_same_bits(c, disk_chart(d.points, d.triangles, d.loops, d.outer, direct_only()));
+}
+
+TEST(Chart, AnUnconvergedIterativeSolveGivesWayToTheDirectSolve) {
+  const Disk d = bent_grid_disk();
+  ChartSolver none;
+  none.iterative_from = 0;
+  none.max_iterations = 0;
+  const Chart c = disk_chart(d.points, d.triangles, d.loops, d.outer, none);
+  EXPECT_FALSE(c.iterative);
+  expect_same_bits(c, disk_chart(d.points, d.triangles, d.loops, d.outer, direct_only()));
+}
+
+TEST(Chart, ASmallSystemSolvedIterativelyIsInjective) {
+  PolyMesh mesh = test::quad_grid_with_holes(8, 8, {27, 28, 35});
+  for (Vec3& p : mesh.positions) p.z() = 0.3 * std::sin(p.x()) * std::cos(0.5 * p.y());
+  const Disk d = grid_disk(mesh);
+  ChartSolver always;
+  always.iterative_from = 0;
+  const Chart c = disk_chart(d.points, d.triangles, d.loops, d.outer, always);
+  EXPECT_TRUE(c.iterative);
+  const Chart direct = disk_chart(d.points, d.triangles, d.loops, d.outer);
+  EXPECT_FALSE(direct.iterative) << "below the default size for the iterative solve";
+  for (size_t v = 0; v < c.uv.size(); ++v) EXPECT_LT((c.uv[v] - direct.uv[v]).norm(), 1e-9);
+  for (Index t = 0; t < static_cast<Index>(c.triangles.size()); ++t)
+    EXPECT_GT(signed_area(c, t), 0) << "triangle " << t;
 }
 
 TEST(Chart, AZeroLengthOuterLoopIsRefused) {
@@ -118,8 +199,13 @@ TEST(Chart, ACollapsedBindStillGivesAnInjectiveChart) {
     const int i = v % 5, j = v / 5;
     if (i > 0 && i < 4 && j > 0 && j < 4) d.points[v] = Vec3(2, 2, 0);
   }
-  const Chart c = disk_chart(d.points, d.triangles, d.loops, d.outer);
-  for (Index t = 0; t < static_cast<Index>(c.triangles.size()); ++t) EXPECT_GT(signed_area(c, t), 0);
+  ChartSolver always;
+  always.iterative_from = 0;
+  for (const ChartSolver& solver : {ChartSolver{}, always}) {
+    const Chart c = disk_chart(d.points, d.triangles, d.loops, d.outer, solver);
+    for (Index t = 0; t < static_cast<Index>(c.triangles.size()); ++t)
+      EXPECT_GT(signed_area(c, t), 0);
+  }
 }
 
 }  // namespace
