@@ -4,10 +4,12 @@
 # and the ICT face of ../shared/data (neutral = bind, four expressions = frames).
 #
 #   scripts/bench.sh [-s "10000 100000 1000000"] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict]
-#                    [--peers | --peers-only] [--peer-sizes "40000 100000 490000"]
-#                    [--peer-frames N] [--peer-repeats N]
+#                    [--peers | --peers-only] [--peer-sizes "40000 100000 490000 1000000"]
+#                    [--peer-frames N] [--peer-repeats N] [--peer-e2e-frames N]
+#                    [--peer-e2e-frames-big N]
 #   (FRAMES frames per case, default 20; FRAMES_BIG, default 4, from 400k vertices on)
 #
+# The main table is the paper method's (--method paper); the elastic method's is --peers'.
 # Per case, medians over RUNS runs:
 #   - stages (CPU time of one thread, tests/bench/bench_stages.cpp): bind read, bind set-up, and
 #     per frame read, frame net, locate, transfer, write; the set-up and frame net also with
@@ -19,21 +21,25 @@
 # Every time is also given as a ratio to the I/O floor's time per frame (x floor).
 # Prints a Markdown table; BENCH_DIR keeps the generated cases (default: a temporary folder).
 #
-# --peers: also a table against the peer a pipeline would use instead, Blender's Corrective Smooth
-# modifier (delta mush; Debian's blender, installed with apt-get when missing; a benchmark tool
-# only), on the synthetic cases of --peer-sizes (default: those of -s under 1M vertices; cases are
-# generated as above). Per case, from the same run:
-#   - Corrective Smooth, 10 iterations, one thread (blender -t 1), rest = the bind, vertex group =
-#     the patch's free vertices, on the case's first frame (scripts/corrective_smooth.py `time`):
-#     warm evaluations as in playback (the frame is an animated shape key, scene.frame_set per
-#     time, the modifier's rest cache kept), medians of --peer-repeats (default 9) evaluations of
-#     the scene; the same with the modifier off gives the overhead (shape key mix, mesh copy), and
-#     "modifier" is the difference; "cold" is the first evaluation (the rest's deltas computed);
-#     process CPU ms;
-#   - skinslide's elastic method (the command's default) on the same frame, given --peer-frames
-#     times (default 1; 0: Corrective Smooth alone): the `relax` stage of tests/bench/bench_stages.cpp (-m elastic), thread
-#     CPU ms, and its `slide_frame` (relax plus the transfer of its result), both medians;
-#   - the ratio elastic relax / Corrective Smooth's modifier.
+# --peers: also the elastic method's table (the command's default), beside the peer a pipeline
+# would use instead, Blender's Corrective Smooth modifier (delta mush; Debian's blender, installed
+# with apt-get when missing; a benchmark tool only), on the synthetic cases of --peer-sizes
+# (default "40000 100000 490000 1000000"; cases are generated as above). Per case, one run each:
+#   - Corrective Smooth (below 1M vertices), 10 iterations, one thread (blender -t 1), rest = the
+#     bind, vertex group = the patch's free vertices, on the case's first frame
+#     (scripts/corrective_smooth.py `time`): warm evaluations as in playback (the frame is an
+#     animated shape key, scene.frame_set per time, the modifier's rest cache kept), medians of
+#     --peer-repeats (default 9) evaluations of the scene; the same with the modifier off gives
+#     the overhead (shape key mix, mesh copy), and "modifier" is the difference; "cold" is the
+#     first evaluation (the rest's deltas computed); process CPU ms;
+#   - skinslide's elastic method on the same frame, given --peer-frames times (default 1; 0:
+#     Corrective Smooth alone): the `relax` stage of tests/bench/bench_stages.cpp (-m elastic),
+#     thread CPU ms, with its Gauss-Newton steps, and its `slide_frame` (relax plus the transfer
+#     of its result), medians; the ratio elastic relax / Corrective Smooth's modifier;
+#   - the bind set-up of both methods (bench_stages -b, thread CPU ms);
+#   - end to end: the command (bind + the first --peer-e2e-frames frames, default 20; from 400k
+#     vertices --peer-e2e-frames-big, default 2) with -j1, wall seconds per frame, against the
+#     same command with --no-slide (the I/O floor); peak memory with -j1 and with -j2.
 # --peers-only: the peer table alone (no stage, command or ICT runs).
 set -euo pipefail
 export LC_ALL=C  # '.' decimal points in $EPOCHREALTIME and awk
@@ -48,7 +54,9 @@ peers_only=0
 peer_sizes=
 peer_frames=1
 peer_repeats=9
-usage="usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict] [--peers | --peers-only] [--peer-sizes SIZES] [--peer-frames N] [--peer-repeats N]"
+peer_e2e_frames=20
+peer_e2e_frames_big=2
+usage="usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict] [--peers | --peers-only] [--peer-sizes SIZES] [--peer-frames N] [--peer-repeats N] [--peer-e2e-frames N] [--peer-e2e-frames-big N]"
 while [ $# -gt 0 ]; do
   case $1 in
     -s) sizes=$2; shift 2 ;;
@@ -61,6 +69,8 @@ while [ $# -gt 0 ]; do
     --peer-sizes) peer_sizes=$2; shift 2 ;;
     --peer-frames) peer_frames=$2; shift 2 ;;
     --peer-repeats) peer_repeats=$2; shift 2 ;;
+    --peer-e2e-frames) peer_e2e_frames=$2; shift 2 ;;
+    --peer-e2e-frames-big) peer_e2e_frames_big=$2; shift 2 ;;
     *) echo "$usage" >&2; exit 2 ;;
   esac
 done
@@ -80,9 +90,7 @@ fi
 
 blender=${BLENDER:-blender}
 if [ "$peers" = 1 ]; then
-  if [ -z "$peer_sizes" ]; then
-    for n in $sizes; do [ "$n" -lt 1000000 ] && peer_sizes="$peer_sizes $n"; done
-  fi
+  [ -n "$peer_sizes" ] || peer_sizes="40000 100000 490000 1000000"
   if ! command -v "$blender" >/dev/null; then
     echo "bench: --peers needs Blender: apt-get install -y blender (large)" >&2
     if ! { apt-get install -y blender || { apt-get update && apt-get install -y blender; }; } \
@@ -138,7 +146,7 @@ bench() {
         [ "$mode" = floor ] && flag=--no-slide
         rm -rf "$out/cli"
         local t0=$EPOCHREALTIME
-        /usr/bin/time -f "%M" -o "$work/time" "$bin" $flag -j "$j" --patch "$patch" "$bind" "$@" \
+        /usr/bin/time -f "%M" -o "$work/time" "$bin" --method paper $flag -j "$j" --patch "$patch" "$bind" "$@" \
           -o "$out/cli" 2>"$work/log"
         local t1=$EPOCHREALTIME
         # The summary line "N frames slid in S s" times the frames alone, after the set-up.
@@ -170,28 +178,56 @@ gen_case() {
   }
 }
 
-# peer N: Corrective Smooth and the elastic method on case N's first frame -> $work/peerN.result
+# peer N: the elastic method on case N's first frame beside Corrective Smooth (below 1M
+# vertices) -> $work/peerN.result
 peer() {
   local n=$1 dir=$work/case$1 res=$work/peer$1.result
   local frame=$dir/frames/f.0001.obj
-  echo "bench: peers, synthetic $n (Corrective Smooth, then skinslide elastic x$peer_frames)" >&2
-  if ! "$blender" -b --factory-startup -noaudio --python-exit-code 1 -t 1 \
-    --python "$root/scripts/corrective_smooth.py" -- time --bind "$dir/bind.obj" \
-    --patch "$dir/patch.txt" --frame "$frame" --repeats "$peer_repeats" >"$work/peer$n.cs.log" 2>&1; then
-    tail -n 20 "$work/peer$n.cs.log" >&2
-    echo "bench: Corrective Smooth failed on synthetic $n" >&2
-    exit 1
+  : >"$res"
+  if [ "$n" -lt 1000000 ]; then
+    echo "bench: peers, synthetic $n: Corrective Smooth" >&2
+    if ! "$blender" -b --factory-startup -noaudio --python-exit-code 1 -t 1 \
+      --python "$root/scripts/corrective_smooth.py" -- time --bind "$dir/bind.obj" \
+      --patch "$dir/patch.txt" --frame "$frame" --repeats "$peer_repeats" >"$work/peer$n.cs.log" 2>&1; then
+      tail -n 20 "$work/peer$n.cs.log" >&2
+      echo "bench: Corrective Smooth failed on synthetic $n" >&2
+      exit 1
+    fi
+    grep '^cs_' "$work/peer$n.cs.log" | grep -v '^cs_info' >>"$res"
   fi
-  grep '^cs_' "$work/peer$n.cs.log" | grep -v '^cs_info' >"$res"
-  local fl=() k
   [ "$peer_frames" -gt 0 ] || return 0  # Corrective Smooth alone
+  echo "bench: peers, synthetic $n: skinslide elastic, stages x$peer_frames" >&2
+  local fl=() k
   for k in $(seq "$peer_frames"); do fl+=("$frame"); done
   "$stages" -m elastic -o "$work/peer_out" "$dir/bind.obj" "$dir/patch.txt" "${fl[@]}" \
     >"$work/peer$n.stages"
+  "$stages" -m paper -b -o "$work/peer_out" "$dir/bind.obj" "$dir/patch.txt" >"$work/peer$n.paper"
   rm -rf "$work/peer_out"
   for k in relax slide_frame elastic_iterations patch_vertices mesh_vertices bind_setup; do
     echo "elastic_${k#elastic_} $(awk -v k="$k" '$1 == k {print $2}' "$work/peer$n.stages")" >>"$res"
   done
+  echo "paper_bind_setup $(awk '$1 == "bind_setup" {print $2}' "$work/peer$n.paper")" >>"$res"
+  # End to end, the command's default (elastic): bind + E frames with -j1 against the I/O floor
+  # (--no-slide) of the same command; the peak memory also with -j2 on the same frames.
+  local e=$peer_e2e_frames
+  [ "$n" -ge 400000 ] && e=$peer_e2e_frames_big
+  local frames=("$dir"/frames/*.obj)
+  frames=("${frames[@]:0:$e}")
+  echo "bench: peers, synthetic $n: skinslide end to end, ${#frames[@]} frames" >&2
+  for mode in slide floor slide2; do
+    local flag="-j 1"
+    [ "$mode" = floor ] && flag="-j 1 --no-slide"
+    [ "$mode" = slide2 ] && flag="-j 2"
+    rm -rf "$work/peer_cli"
+    local t0=$EPOCHREALTIME
+    /usr/bin/time -f "%M" -o "$work/time" "$bin" $flag --patch "$dir/patch.txt" "$dir/bind.obj" \
+      "${frames[@]}" -o "$work/peer_cli" 2>"$work/log"
+    local t1=$EPOCHREALTIME
+    echo "e2e_${mode}_seconds $(awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.4f", b - a}')" >>"$res"
+    echo "e2e_${mode}_peak_kb $(cat "$work/time")" >>"$res"
+  done
+  rm -rf "$work/peer_cli"
+  echo "e2e_frames ${#frames[@]}" >>"$res"
 }
 
 names=()
@@ -269,22 +305,35 @@ def ms(x):
     return f"{x:.0f}" if x >= 100 else f"{x:.1f}" if x >= 1 else f"{x:.2f}"
 
 print("\n| case | mesh / free vertices | Corrective Smooth ms: frame eval (overhead) | modifier | cold (first eval) "
-      "| skinslide elastic ms: relax (iterations) | slide_frame | elastic relax / CS modifier |")
-print("|" + "---|" * 8)
+      "| skinslide elastic ms: relax (steps) | slide_frame | elastic relax / CS modifier "
+      "| bind set-up ms: elastic / paper | end to end s/frame -j1 (I/O floor) | peak MB -j1 / -j2 |")
+print("|" + "---|" * 11)
 for n in names:
     r = {}
     for line in open(f"{work}/peer{n}.result"):
         k, v = line.split()
         r[k] = float(v)
-    el = ("| n/a | n/a | n/a |" if "elastic_relax" not in r else
-          f"| {ms(r['elastic_relax'])} ({r['elastic_iterations']:.0f}) | {ms(r['elastic_slide_frame'])} "
-          f"| {r['elastic_relax'] / r['cs_modifier_ms']:.0f}x |")
-    print(f"| synthetic {n} | {r['cs_vertices']:.0f} / {r['cs_free_vertices']:.0f} "
-          f"| {ms(r['cs_frame_ms'])} ({ms(r['cs_overhead_ms'])}) | {ms(r['cs_modifier_ms'])} | {ms(r['cs_cold_ms'])} "
-          + el)
-print("\nCPU ms per frame, one thread, the case's first frame. Corrective Smooth: medians of warm scene "
-      "evaluations (its rest cache kept, as in playback); modifier = frame eval minus the same evaluation "
-      "with the modifier off (overhead: shape key mix, mesh copy). skinslide: the elastic method's relax stage "
-      "(bench_stages -m elastic), slide_frame = relax + the transfer of its result.")
+    cs = (f"| {ms(r['cs_frame_ms'])} ({ms(r['cs_overhead_ms'])}) | {ms(r['cs_modifier_ms'])} | {ms(r['cs_cold_ms'])} "
+          if "cs_modifier_ms" in r else "| - | - | - ")
+    if "elastic_relax" not in r:
+        el = "| n/a | n/a | n/a | n/a | n/a | n/a |"
+    else:
+        ratio = f"{r['elastic_relax'] / r['cs_modifier_ms']:.0f}x" if "cs_modifier_ms" in r else "-"
+        f = r["e2e_frames"]
+        e2e = r["e2e_slide_seconds"] / f
+        floor = r["e2e_floor_seconds"] / f
+        el = (f"| {ms(r['elastic_relax'])} ({r['elastic_iterations']:.0f}) | {ms(r['elastic_slide_frame'])} | {ratio} "
+              f"| {ms(r['elastic_bind_setup'])} / {ms(r['paper_bind_setup'])} ({r['elastic_bind_setup'] / r['paper_bind_setup']:.1f}x) "
+              f"| {e2e:.3g} ({floor:.3g}; {e2e / floor:.0f}x, {f:.0f} frames) "
+              f"| {r['e2e_slide_peak_kb'] / 1024:.0f} / {r['e2e_slide2_peak_kb'] / 1024:.0f} |")
+    vertices = r.get("cs_vertices", r.get("elastic_mesh_vertices", 0))
+    free = r.get("cs_free_vertices", r.get("elastic_patch_vertices", 0))
+    print(f"| synthetic {n} | {vertices:.0f} / {free:.0f} " + cs + el)
+print("\nCPU ms per frame, one thread, the case's first frame. Corrective Smooth (below 1M vertices): medians "
+      "of warm scene evaluations (its rest cache kept, as in playback); modifier = frame eval minus the same "
+      "evaluation with the modifier off (overhead: shape key mix, mesh copy). skinslide: the elastic method's "
+      "relax stage (bench_stages -m elastic), slide_frame = relax + the transfer of its result; bind set-up of "
+      "both methods (bench_stages -b). End to end: wall seconds of the command (bind + frames) per frame, -j1, "
+      "against the same command with --no-slide (the I/O floor); peak resident memory of the command.")
 EOF
 fi
