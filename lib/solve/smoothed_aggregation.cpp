@@ -44,6 +44,17 @@ void sort_short(Index* begin, Index* end) {
     for (Index* p = q; p > begin && *p < *(p - 1); --p) std::swap(*p, *(p - 1));
 }
 
+// Ends row i of M with the row a sparse accumulator gathered: its `count` columns in `row`,
+// sorted, each with its total.
+void append_row(Index* row, Index count, const double* total, Index i, RowMatrix& M) {
+  sort_short(row, row + count);
+  for (Index q = 0; q < count; ++q) {
+    M.column.push_back(row[q]);
+    M.value.push_back(total[row[q]]);
+  }
+  M.start[i + 1] = static_cast<Index>(M.column.size());
+}
+
 // C = A B for compressed-row A (rows x inner) and B (inner x columns); columns ascending.
 RowMatrix product(const RowMatrix& A, const RowMatrix& B, Index columns) {
   RowMatrix C;
@@ -85,12 +96,7 @@ RowMatrix product(const RowMatrix& A, const RowMatrix& B, Index columns) {
         }
       }
     }
-    sort_short(row, row + count);
-    for (Index q = 0; q < count; ++q) {
-      C.column.push_back(row[q]);
-      C.value.push_back(total[row[q]]);
-    }
-    C.start[i + 1] = static_cast<Index>(C.column.size());
+    append_row(row, count, total, i, C);
   }
   return C;
 }
@@ -197,12 +203,7 @@ RowMatrix smoothed_prolongator(const RowMatrix& A, const std::vector<double>& in
         total[c] += v;
       }
     }
-    sort_short(row, row + count);
-    for (Index q = 0; q < count; ++q) {
-      P.column.push_back(row[q]);
-      P.value.push_back(total[row[q]]);
-    }
-    P.start[i + 1] = static_cast<Index>(P.column.size());
+    append_row(row, count, total, i, P);
   }
   return P;
 }
