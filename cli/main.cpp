@@ -19,6 +19,9 @@
 #include "core/allocator.h"
 #include "core/error.h"
 #include "core/version.h"
+#include "io/atomic_write.h"
+#include "io/point_cache.h"
+#include "join.h"
 #include "pipeline/run.h"
 #include "progress.h"
 
@@ -53,12 +56,12 @@ struct CliOptions {
   bool quiet = false;
   bool verbose = false;
   bool no_slide = false;
-  std::string mesh;            // glTF: which mesh (name or index); empty = the only one
-  bool rig = false;            // --animation given: the frames are BIND posed by its skin
-  std::string animation;       // clip name or index
-  double fps = 0;              // 0 = the clip's key times
-  bool keyframes = false;      // --keyframes: the default, spelled out
-  std::string format = "glb";  // of the slid rig frames: obj or glb
+  std::string mesh;        // glTF: which mesh (name or index); empty = the only one
+  bool rig = false;        // --animation given: the frames are BIND posed by its skin
+  std::string animation;   // clip name or index
+  double fps = 0;          // 0 = the clip's key times
+  bool keyframes = false;  // --keyframes: the default, spelled out
+  std::string format;      // of the slid frames: obj, glb, pc2, mdd; empty = the source's
   // Controls (README "Controls")
   std::string weights;
   std::string weights_color;
@@ -79,7 +82,7 @@ RunOptions run_options(const CliOptions& o) {
   r.frames = o.frames;
   r.mesh = o.mesh;
   if (o.rig) r.rig = RigOptions{o.animation, o.fps};
-  r.rig_format = o.format;
+  r.format = o.format;
   r.output = o.output;
   r.dump_dir = o.dump_dir;
   r.preview_dir = o.preview_dir;
@@ -154,6 +157,10 @@ int main(int argc, char** argv) {
   skinslide::restart_with_huge_pages(argv);
   std::setlocale(LC_ALL, "C");
   skinslide::keep_freed_memory();
+  // A farm cancels a task with SIGTERM: no temporary file is left behind (io/atomic_write.h).
+  skinslide::remove_temporaries_on_termination();
+  // `skinslide join ...`: a farm's cache chunks into the shot's cache (cli/join.cpp).
+  if (argc > 1 && std::string(argv[1]) == "join") return run_join(argc - 1, argv + 1);
   CliOptions o;
   CLI::App app{
       "skinslide " + std::string(version()) +
@@ -173,7 +180,12 @@ int main(int argc, char** argv) {
           "welded by\n"
           "position for connectivity only).\n"
           "A rigged glTF character can be its own frame source:\n"
-          "  skinslide --patch P.txt --animation NAME|INDEX [--fps N | --keyframes] character.glb",
+          "  skinslide --patch P.txt --animation NAME|INDEX [--fps N | --keyframes] character.glb\n"
+          "A point cache (.pc2, .mdd) of the bind's vertices is a whole shot: one FRAME, slid "
+          "sample by\n"
+          "sample into a cache of the same name (a --frames chunk: <shot>.<first>-<last>.pc2); "
+          "chunks join with\n"
+          "  skinslide join [-o DIR] CHUNK...",
       "skinslide"};
   app.set_version_flag("--version", std::string("skinslide ") + version());
   app.get_formatter()->column_width(36);
@@ -190,7 +202,8 @@ int main(int argc, char** argv) {
       ->group(in);
   auto* frames_opt =
       app.add_option("frames", o.frames,
-                     "Deformed frames: the bind mesh with moved vertices (none with --animation)")
+                     "Deformed frames: the bind mesh with moved vertices, or one point cache of "
+                     "them (.pc2, .mdd); none with --animation")
           ->type_name("FRAME...")
           ->group(in);
 
@@ -216,13 +229,13 @@ int main(int argc, char** argv) {
       ->needs(anim)
       ->excludes(fps)
       ->group(gl);
-  app.add_option("--format", o.format,
-                 "Format of the slid frames of --animation, named <character>.<frame>.<format>, "
-                 "frame numbers from 0000")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"obj", "glb"}))
-      ->needs(anim)
-      ->group(gl);
+  auto* format =
+      app.add_option("--format", o.format,
+                     "Format of the slid frames of --animation (default glb; frames "
+                     "<character>.<frame>.<format> from 0000) or of a point cache FRAME (default "
+                     "its own): obj or glb, a file a frame; pc2 or mdd, one cache")
+          ->check(CLI::IsMember({"obj", "glb", "pc2", "mdd"}))
+          ->group(gl);
 
   auto* out = "Output";
   app.add_option("-o,--output", o.output, "Folder for the slid frames (same file names)")
@@ -432,12 +445,18 @@ int main(int argc, char** argv) {
     if (!o.rig && o.frames.empty())
       throw CLI::ValidationError("FRAME...",
                                  "give at least one FRAME, or --animation with a rigged glTF BIND");
+    const bool cache_frame = o.frames.size() == 1 && cache_format(o.frames.front());
+    if (format->count() > 0 && !o.rig && !cache_frame)
+      throw CLI::ValidationError("--format",
+                                 "applies to --animation or a point cache FRAME (.pc2, .mdd)");
     std::string ext = fs::path(o.bind).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return std::tolower(c); });
     const bool gltf_bind = ext == ".gltf" || ext == ".glb";
     if (o.rig && !gltf_bind)
       throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + o.bind);
+    if (cache_frame && o.format == "glb" && !gltf_bind)
+      throw CLI::ValidationError("--format", "glb from a point cache needs a .gltf or .glb BIND");
     if (weights_attribute->count() > 0 && o.weights_attribute.empty())
       throw CLI::ValidationError("--weights-from-gltf-attribute", "needs an attribute name");
     if (!o.weights_attribute.empty() && !gltf_bind)

@@ -1,6 +1,8 @@
 #include "io/atomic_write.h"
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -19,7 +21,57 @@ namespace {
   throw Error(ErrorKind::Output, path + ": cannot write: " + what);
 }
 
+// The temporaries in flight, where a signal handler can read them: fixed slots of plain
+// characters (no allocation, no lock), each free, being filled, or listing a live temporary.
+// A temporary that finds no slot is still never renamed half-written; only a signal would leave
+// it behind, as SIGKILL leaves any.
+constexpr int kTemporarySlots = 256;  // files written at once: a few per frame thread
+constexpr std::size_t kSlotPathBytes = 4096;
+enum SlotState : int { kFree, kFilling, kLive };
+struct TemporarySlot {
+  std::atomic<int> state{kFree};
+  char path[kSlotPathBytes];
+};
+TemporarySlot temporary_slots[kTemporarySlots];
+static_assert(std::atomic<int>::is_always_lock_free, "slots read by a signal handler");
+
+int list_temporary(const std::string& path) {
+  if (path.size() >= kSlotPathBytes) return -1;
+  for (int i = 0; i < kTemporarySlots; ++i) {
+    int expected = kFree;
+    if (!temporary_slots[i].state.compare_exchange_strong(expected, kFilling)) continue;
+    std::memcpy(temporary_slots[i].path, path.c_str(), path.size() + 1);
+    temporary_slots[i].state.store(kLive, std::memory_order_release);
+    return i;
+  }
+  return -1;
+}
+
+void unlist_temporary(int slot) {
+  if (slot >= 0) temporary_slots[slot].state.store(kFree, std::memory_order_release);
+}
+
+// Async-signal-safe: atomic loads, unlink, signal, raise. A slot freed and refilled while this
+// runs names a file already renamed or removed (unlink fails harmlessly) or is skipped.
+extern "C" void remove_temporaries_and_end(int signal_number) {
+  for (TemporarySlot& slot : temporary_slots)
+    if (slot.state.load(std::memory_order_acquire) == kLive) ::unlink(slot.path);
+  ::signal(signal_number, SIG_DFL);
+  ::raise(signal_number);
+}
+
 }  // namespace
+
+void remove_temporaries_on_termination() {
+  for (const int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
+    struct sigaction action {
+    }, previous{};
+    action.sa_handler = remove_temporaries_and_end;
+    sigemptyset(&action.sa_mask);
+    if (::sigaction(signal_number, &action, &previous) == 0 && previous.sa_handler == SIG_IGN)
+      ::sigaction(signal_number, &previous, nullptr);  // nohup and `&` in scripts ignore some
+  }
+}
 
 constexpr size_t kBufferBytes = size_t{1} << 20;  // pieces are gathered into writes this size
 
@@ -36,20 +88,27 @@ AtomicFile::AtomicFile(const std::string& path) : path_(path) {
   temporary_ = (dir / name).string();
   fd_ = mkstemp(temporary_.data());
   if (fd_ < 0) throw_output(path, std::strerror(errno));
+  slot_ = list_temporary(temporary_);
   buffer_.reserve(kBufferBytes);
 }
 
 AtomicFile::~AtomicFile() {
   if (fd_ >= 0) {
     ::close(fd_);
-    ::unlink(temporary_.c_str());
+    remove_temporary();
   }
+}
+
+void AtomicFile::remove_temporary() {
+  ::unlink(temporary_.c_str());
+  unlist_temporary(slot_);
+  slot_ = -1;
 }
 
 void AtomicFile::fail(const std::string& reason) {
   ::close(fd_);
   fd_ = -1;
-  ::unlink(temporary_.c_str());
+  remove_temporary();
   throw_output(path_, reason);
 }
 
@@ -79,6 +138,23 @@ void AtomicFile::write(std::string_view bytes) {
     buffer_.append(bytes);
 }
 
+void AtomicFile::write_at(std::uint64_t offset, std::string_view bytes) {
+  SKINSLIDE_CHECK(fd_ >= 0 && buffer_.empty(), "write_at on an open file without write()s");
+  const char* p = bytes.data();
+  size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::pwrite(fd_, p, left, static_cast<off_t>(offset));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      // No fail(): other threads may be writing through fd_; the destructor cleans up.
+      throw_output(path_, std::strerror(errno));
+    }
+    p += n;
+    offset += static_cast<std::uint64_t>(n);
+    left -= static_cast<size_t>(n);
+  }
+}
+
 void AtomicFile::commit() {
   SKINSLIDE_CHECK(fd_ >= 0, "a file not yet committed");
   write_all(buffer_.data(), buffer_.size());
@@ -95,14 +171,16 @@ void AtomicFile::commit() {
   fd_ = -1;
   if (::close(fd) != 0) {
     const std::string reason = std::strerror(errno);
-    ::unlink(temporary_.c_str());
+    remove_temporary();
     throw_output(path_, reason);
   }
   if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
-    ::unlink(temporary_.c_str());
+    remove_temporary();
     throw_output(path_, reason);
   }
+  unlist_temporary(slot_);
+  slot_ = -1;
 }
 
 void write_file_atomic(const std::string& path, std::string_view bytes) {

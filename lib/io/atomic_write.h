@@ -1,6 +1,7 @@
 // Whole-file writes that never leave a partial file: temp file in the target folder + rename.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -20,18 +21,34 @@ class AtomicFile {
 
   /// \throw Error(Output) naming `path` and the system's reason.
   void write(std::string_view bytes);
+  /// Writes `bytes` at byte `offset` of the file, for files of a fixed layout whose pieces come
+  /// in any order (a point cache's samples): each call is its own pwrite, so several threads may
+  /// call it at once. Not mixed with write(): every byte goes through one or the other. A failed
+  /// write leaves the temporary for the destructor to remove.
+  /// \throw Error(Output) naming `path` and the system's reason.
+  void write_at(std::uint64_t offset, std::string_view bytes);
   /// \throw Error(Output) naming `path` and the system's reason.
   void commit();
 
  private:
   void write_all(const char* bytes, size_t size);
   [[noreturn]] void fail(const std::string& reason);
+  void remove_temporary();
 
   std::string path_;
   std::string temporary_;
   int fd_ = -1;
+  int slot_ = -1;  // where the termination handler finds the temporary; -1 = not listed
   std::string buffer_;
 };
+
+/// Makes SIGTERM, SIGINT and SIGHUP remove the temporary files of the AtomicFiles in flight, then
+/// end the process as the signal would have: a farm's scheduler cancels a task with SIGTERM (and
+/// SIGKILL only a grace period later), and a cancelled run then leaves neither a partial output
+/// nor a temporary beside it. Signals the process ignores stay ignored. Call once, early in
+/// main(), before any thread starts. (SIGKILL cannot be caught: after one, temporaries remain,
+/// `.NAME.tmp.XXXXXX`, never a partial NAME.)
+void remove_temporaries_on_termination();
 
 /// Writes `bytes` to `path` atomically (AtomicFile in one piece).
 /// \throw Error(Output) naming `path` and the system's reason.

@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include <Eigen/Geometry>
+
 #include "core/check.h"
 #include "core/error.h"
 #include "io/atomic_write.h"
@@ -708,6 +710,33 @@ MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positi
   }
   out.gltf = std::move(doc);
   return out;
+}
+
+Index gltf_raw_vertex_count(const MeshFile& file) {
+  SKINSLIDE_CHECK(file.gltf != nullptr, "gltf_raw_vertex_count on a file that is not glTF");
+  return static_cast<Index>(file.gltf->welded.size());
+}
+
+MeshFile gltf_at_positions(const MeshFile& bind, const Positions3& positions) {
+  SKINSLIDE_CHECK(bind.gltf != nullptr, "gltf_at_positions on a file that is not glTF");
+  const GltfDocument& doc = *bind.gltf;
+  SKINSLIDE_CHECK(positions.size() == static_cast<std::size_t>(bind.mesh.vertex_count()),
+                  "one position per welded vertex");
+  const std::size_t raw_total = doc.welded.size();
+  Positions3 raw(raw_total), normals(raw_total, Vec3::Zero());
+  for (std::size_t r = 0; r < raw_total; ++r) raw[r] = positions[doc.welded[r]];
+  for (const std::array<Index, 3>& t : doc.triangle_raw) {
+    const Vec3 n = (raw[t[1]] - raw[t[0]]).cross(raw[t[2]] - raw[t[0]]);
+    for (Index r : t) normals[r] += n;
+  }
+  // A raw vertex whose triangles have no area takes its welded vertex's normal, else +z.
+  Positions3 welded_normals(positions.size(), Vec3::Zero());
+  for (std::size_t r = 0; r < raw_total; ++r) welded_normals[doc.welded[r]] += normals[r];
+  for (std::size_t r = 0; r < raw_total; ++r) {
+    Vec3 n = normals[r].norm() > 0 ? normals[r] : welded_normals[doc.welded[r]];
+    normals[r] = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ();
+  }
+  return posed_gltf_file(bind, raw, normals);
 }
 
 }  // namespace skinslide

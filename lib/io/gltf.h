@@ -62,4 +62,14 @@ void write_gltf_file(const MeshFile& frame, const SlidVertices& slid, const std:
 MeshFile posed_gltf_file(const MeshFile& character, const Positions3& raw_positions,
                          const Positions3& raw_normals);
 
+/// How many raw vertices (the POSITION elements of the mesh's triangle primitives, primitives
+/// concatenated) `file`'s welded mesh was built from. \pre `file` was read by read_gltf_file.
+Index gltf_raw_vertex_count(const MeshFile& file);
+
+/// A static copy of `bind` (read by read_gltf_file) with its welded vertices at `positions` (#V:
+/// a point cache's sample), as posed_gltf_file writes it: every raw copy at its welded vertex's
+/// position; NORMAL of each raw vertex the area-weighted normal of the triangles using that raw
+/// vertex, so that edges the file splits for hard shading stay hard (a cache has no normals).
+MeshFile gltf_at_positions(const MeshFile& bind, const Positions3& positions);
+
 }  // namespace skinslide

@@ -13,6 +13,12 @@ DoubleText double_text(double x) {
 
 std::string format_double(double x) { return std::string(double_text(x).view()); }
 
+std::string format_float(float x) {
+  char chars[32];
+  const auto r = std::to_chars(chars, chars + sizeof chars, x);
+  return std::string(chars, r.ptr);
+}
+
 std::optional<double> parse_double(std::string_view text) {
   // from_chars rejects a leading '+', which some exporters write.
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);

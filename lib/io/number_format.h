@@ -11,6 +11,10 @@ namespace skinslide {
 /// Shortest text that reads back to exactly `x` (std::to_chars), e.g. "0.1", "1e-05", "-3".
 std::string format_double(double x);
 
+/// Shortest text that reads back to exactly `x` as a float32 ("0.041666668", not the double's
+/// "0.0416666679084301"): for the values of float32 files (point caches).
+std::string format_float(float x);
+
 /// The same text held in place, for loops that format every coordinate of a frame: most are
 /// longer than a std::string keeps without allocating.
 struct DoubleText {

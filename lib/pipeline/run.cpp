@@ -20,9 +20,12 @@
 #include "io/mesh_file.h"
 #include "io/number_format.h"
 #include "io/obj_write.h"
+#include "io/obj_rewrite.h"
 #include "io/patch_file.h"
+#include "io/point_cache.h"
 #include "io/vertex_list.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/cache_frames.h"
 #include "pipeline/dumps.h"
 #include "pipeline/frame_ranges.h"
 #include "pipeline/report.h"
@@ -48,6 +51,35 @@ bool same_file(const fs::path& a, const fs::path& b) {
   std::error_code ec;
   if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
   return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+// Every file a run reads: no output may be one of them.
+std::vector<std::string> run_inputs(const RunOptions& o) {
+  std::vector<std::string> inputs = o.frames;
+  inputs.push_back(o.bind);
+  inputs.insert(inputs.end(), o.patches.begin(), o.patches.end());
+  for (const std::string* f : {&o.weights, &o.pin})
+    if (!f->empty()) inputs.push_back(*f);
+  return inputs;
+}
+
+void refuse_overwrite(const std::string& target, const std::vector<std::string>& inputs) {
+  for (const std::string& in : inputs)
+    if (same_file(target, in))
+      throw Error(ErrorKind::Usage, "output " + target + " would overwrite input " + in +
+                                        "; choose another --output folder");
+}
+
+// The report must overwrite neither an input nor an output.
+void refuse_report_overwrite(const RunOptions& o, const std::vector<std::string>& inputs,
+                             const std::vector<std::string>& outputs) {
+  if (o.report.empty()) return;
+  for (const std::string& in : inputs)
+    if (same_file(o.report, in))
+      throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);
+  for (const std::string& f : outputs)
+    if (same_file(o.report, f))
+      throw Error(ErrorKind::Usage, "--report " + o.report + " is also the output of a frame");
 }
 
 std::vector<FrameRange> frame_ranges(const RunOptions& o) {
@@ -348,10 +380,68 @@ std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, con
   return frame_lines(setup, result, frame_path, out_path);
 }
 
-// Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB.
+// Where a frame goes in the point cache a run writes (FramePlan::cache): the cache's writer and
+// the frame's sample in it. No writer: the frame has a file of its own.
+struct CacheSlot {
+  CacheWriter* writer = nullptr;
+  size_t sample = 0;
+};
+
+// A frame read from a point cache (its coordinates `frame`, as `positions`), slid by `slid`,
+// written where the plan says: a sample of the output cache (unslid coordinates copied bit for
+// bit), or a file of its own: the OBJ bind's own text with the frame's positions, a welded OBJ
+// of a glTF bind, or a static copy of the glTF bind.
+void write_cache_frame(const MeshFile& bind, const RunOptions& o, CacheSample frame,
+                       const Positions3& positions, const SlidVertices& slid,
+                       const std::string& out_path, CacheSlot slot, const std::string& label) {
+  if (slot.writer)
+    return slot.writer->write_sample(slot.sample, slid_sample(std::move(frame), slid));
+  if (o.format == "glb") return write_gltf_file(gltf_at_positions(bind, positions), slid, out_path);
+  const Positions3 slid_positions = apply_slide(positions, slid);
+  if (bind.obj)
+    return write_rewritten_obj(out_path, *bind.obj, bind.mesh.positions, slid_positions);
+  write_file_atomic(out_path, obj_text(bind.mesh, slid_positions, label + ", slid"));
+}
+
+// Sample k of a point cache: read, slid and written (write_cache_frame).
+std::vector<LogLine> run_cache_frame(const BindSetup& setup, const MeshFile& bind,
+                                     const CacheFrames& cache, const RunOptions& o, size_t k,
+                                     const std::string& out_path, CacheSlot slot,
+                                     ReportFrame* record) {
+  const std::string label =
+      cache.cache->path() + " sample " + std::to_string(k) + " (" + cache.names[k] + ")";
+  auto t0 = std::chrono::steady_clock::now();
+  CacheSample frame = cache.cache->sample(k);
+  const Positions3 positions = sample_positions(frame);
+  const double read_seconds = seconds_since(t0);
+  FrameResult result;
+  if (!o.no_slide) {
+    result = slide_named(setup, o, positions, label);
+    write_frame_pictures(setup, o, cache.names[k] + ".cache", positions, result);
+  }
+  t0 = std::chrono::steady_clock::now();
+  write_cache_frame(bind, o, std::move(frame), positions, result.slid, out_path, slot, label);
+  if (o.no_slide)
+    return {{LogLevel::Info, "skinslide: " + label + ": unchanged (--no-slide) -> " + out_path}};
+  if (record) record_frame(*record, label, out_path, read_seconds, seconds_since(t0), result);
+  return frame_lines(setup, result, label, out_path);
+}
+
+// The header of the cache a run writes: the chosen samples of the FRAME cache, or of the clip.
+CacheHeader output_cache_header(const RunOptions& o, const FramePlan& plan, const MeshFile& bind,
+                                const RigClip& clip, const CacheFrames& cache) {
+  const CacheHeader whole =
+      cache.cache ? cache.cache->header()
+                  : rig_cache_header(o.format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd,
+                                     bind.mesh.vertex_count(), clip.times);
+  return cache_output_header(whole, plan.chosen);
+}
+
+// Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB, or into a cache.
 std::vector<LogLine> run_rig_frame(const BindSetup& setup, const MeshFile& character,
                                    const RigClip& clip, const RunOptions& o, size_t k,
-                                   const std::string& out_path, ReportFrame* record) {
+                                   const std::string& out_path, CacheSlot slot,
+                                   ReportFrame* record) {
   const std::string label = clip.names[k] + " (t = " + fmt(clip.times[k]) + " s)";
   auto t0 = std::chrono::steady_clock::now();
   const MeshFile frame = rig_frame(character, clip, k);
@@ -359,7 +449,10 @@ std::vector<LogLine> run_rig_frame(const BindSetup& setup, const MeshFile& chara
   const FrameResult result = slide_named(setup, o, frame.mesh.positions, label);
   write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
   t0 = std::chrono::steady_clock::now();
-  if (o.rig_format == "obj")
+  if (slot.writer)
+    slot.writer->write_sample(slot.sample,
+                              positions_sample(apply_slide(frame.mesh.positions, result.slid)));
+  else if (o.format == "obj")
     write_file_atomic(out_path, obj_text(frame.mesh, apply_slide(frame.mesh.positions, result.slid),
                                          character.path + ", " + label + ", slid"));
   else
@@ -372,11 +465,7 @@ std::vector<LogLine> run_rig_frame(const BindSetup& setup, const MeshFile& chara
 
 FramePlan plan_frames(const RunOptions& o) {
   const std::vector<FrameRange> ranges = frame_ranges(o);
-  std::vector<std::string> inputs = o.frames;
-  inputs.push_back(o.bind);
-  inputs.insert(inputs.end(), o.patches.begin(), o.patches.end());
-  for (const std::string* f : {&o.weights, &o.pin})
-    if (!f->empty()) inputs.push_back(*f);
+  const std::vector<std::string> inputs = run_inputs(o);
   FramePlan plan;
   std::set<std::string> names;
   for (const std::string& f : o.frames) {
@@ -384,21 +473,11 @@ FramePlan plan_frames(const RunOptions& o) {
     if (!names.insert(name).second)
       throw Error(ErrorKind::Usage, "two frames are named '" + name + "'; their outputs in " +
                                         o.output + " would collide");
-    const fs::path target = fs::path(o.output) / name;
-    for (const std::string& in : inputs)
-      if (same_file(target, in))
-        throw Error(ErrorKind::Usage, "output " + target.string() + " would overwrite input " + in +
-                                          "; choose another --output folder");
-    plan.outputs.push_back(target.string());
+    const std::string target = (fs::path(o.output) / name).string();
+    refuse_overwrite(target, inputs);
+    plan.outputs.push_back(target);
   }
-  if (!o.report.empty()) {
-    for (const std::string& in : inputs)
-      if (same_file(o.report, in))
-        throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);
-    for (const std::string& f : plan.outputs)
-      if (same_file(o.report, f))
-        throw Error(ErrorKind::Usage, "--report " + o.report + " is also the output of a frame");
-  }
+  refuse_report_overwrite(o, inputs, plan.outputs);
   plan.chosen = chosen_frames(ranges, plan.outputs, o.frames, o.frame_ranges);
   return plan;
 }
@@ -407,16 +486,60 @@ FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& n
   const std::vector<FrameRange> ranges = frame_ranges(o);
   std::vector<std::string> inputs = o.patches;
   inputs.push_back(o.bind);
+  const std::string format = o.format.empty() ? "glb" : o.format;
   FramePlan plan;
   for (const std::string& name : names) {
-    const fs::path target = fs::path(o.output) / (name + "." + o.rig_format);
-    for (const std::string& in : inputs)
-      if (same_file(target, in))
-        throw Error(ErrorKind::Usage, "output " + target.string() + " would overwrite input " + in +
-                                          "; choose another --output folder");
-    plan.outputs.push_back(target.string());
+    const std::string target = (fs::path(o.output) / (name + "." + format)).string();
+    refuse_overwrite(target, inputs);
+    plan.outputs.push_back(target);
   }
   plan.chosen = chosen_frames(ranges, plan.outputs, names, o.frame_ranges);
+  if (is_cache_format(format)) {
+    // The clip's frames as samples of one cache: frame numbers are the sample indices.
+    CacheHeader whole;
+    whole.format = format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd;
+    whole.samples = static_cast<std::int32_t>(names.size());
+    plan.cache = cache_output_path(o.output, fs::path(o.bind).stem().string(), "." + format, whole,
+                                   plan.chosen);
+    refuse_overwrite(plan.cache, inputs);
+    plan.outputs.assign(names.size(), plan.cache);
+  }
+  return plan;
+}
+
+FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
+                            const std::vector<std::string>& names) {
+  const std::vector<std::string> inputs = run_inputs(o);
+  const std::string own = to_string(cache.format);
+  const std::string format = o.format.empty() ? own : o.format;
+  FramePlan plan;
+  plan.chosen = chosen_samples(cache, o.frame_ranges);
+  if (is_cache_format(format)) {
+    if (format != own)
+      throw Error(ErrorKind::Usage, "--format " + format + ": " + o.frames.front() + " is a " +
+                                        own +
+                                        " cache; a cache is written in its own format "
+                                        "(PC2 frames and MDD times do not convert without a "
+                                        "frame rate)");
+    const fs::path input(o.frames.front());
+    plan.cache = cache_output_path(o.output, input.stem().string(), input.extension().string(),
+                                   cache, plan.chosen);
+    refuse_overwrite(plan.cache, inputs);
+    plan.outputs.assign(names.size(), plan.cache);
+  } else {
+    plan.outputs.resize(names.size());
+    std::set<std::string> taken;
+    for (std::size_t k : plan.chosen) {
+      if (!taken.insert(names[k]).second)
+        throw Error(ErrorKind::Usage, "--format " + format + ": two samples of " +
+                                          o.frames.front() + " fall in frame " + names[k] +
+                                          " (samples below a frame): one file a frame cannot "
+                                          "hold them; write the cache instead");
+      plan.outputs[k] = (fs::path(o.output) / (names[k] + "." + format)).string();
+      refuse_overwrite(plan.outputs[k], inputs);
+    }
+  }
+  refuse_report_overwrite(o, inputs, plan.outputs);
   return plan;
 }
 
@@ -425,10 +548,13 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
     if (events.log) events.log(line);
   };
   const auto t_run = std::chrono::steady_clock::now();
-  // A rig run's frames are known once the character is read; its --frames is checked before.
-  if (o.rig) (void)frame_ranges(o);
-  FramePlan plan = o.rig ? FramePlan{} : plan_frames(o);
-  if (!o.rig && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
+  // A rig run's frames are known once the character is read, a cache's once its header is;
+  // their --frames is checked before.
+  const bool cache_run = !o.rig && is_cache_run(o.frames);
+  const bool dumps = !o.dump_dir.empty() || !o.preview_dir.empty();
+  if (o.rig || cache_run) (void)frame_ranges(o);
+  FramePlan plan = o.rig || cache_run ? FramePlan{} : plan_frames(o);
+  if (!o.rig && !cache_run && dumps) check_dump_stems(o.frames);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
   // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
@@ -438,6 +564,15 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
     clip = rig_clip(bind, *o.rig);
     plan = plan_rig_frames(o, clip.names);
   }
+  // A point cache FRAME: its samples are the frames (pipeline/cache_frames.h).
+  CacheFrames cache;
+  if (cache_run) {
+    cache = open_cache_frames(o.frames.front(), bind);
+    plan = plan_cache_frames(o, cache.cache->header(), cache.names);
+    std::vector<std::string> dump_names;
+    for (size_t k : plan.chosen) dump_names.push_back(cache.names[k] + ".cache");
+    if (dumps) check_dump_stems(dump_names);
+  }
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
@@ -445,8 +580,9 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   const SlideControls controls = slide_controls(o, bind, report);
   // The bind file's contents served the controls (vertex colours, attributes); from here on the
   // frames need only its mesh, unless it is the character the frames are posed from. At 1M
-  // vertices an OBJ's text and token spans are about 70 MB held for the whole run.
-  if (!o.rig) {
+  // vertices an OBJ's text and token spans are about 70 MB held for the whole run. A cache's
+  // frames written a file each are made from the bind's file.
+  if (!o.rig && !(cache_run && plan.cache.empty())) {
     bind.obj.reset();
     bind.gltf.reset();
   }
@@ -464,6 +600,11 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
   make_output_dir(o.output);
   if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
+  // A cache output is written sample by sample at its offsets, renamed into place once complete.
+  std::unique_ptr<CacheWriter> cache_out;
+  if (!plan.cache.empty())
+    cache_out =
+        std::make_unique<CacheWriter>(plan.cache, output_cache_header(o, plan, bind, clip, cache));
 
   const std::vector<size_t>& chosen = plan.chosen;
   const size_t count = chosen.size();
@@ -482,19 +623,21 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   auto worker = [&] {
     for (size_t j; !stop && (j = next++) < count;) {
       const size_t i = chosen[j];
+      const std::string& label = o.rig ? clip.names[i] : cache_run ? cache.names[i] : o.frames[i];
+      const CacheSlot slot{cache_out.get(), j};  // the chosen frames are one run of samples
       try {
         ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
-        done(j, o.rig ? run_rig_frame(setup, bind, clip, o, i, plan.outputs[i], record)
-                      : run_frame(setup, bind, o, o.frames[i], plan.outputs[i], record));
+        done(j, o.rig ? run_rig_frame(setup, bind, clip, o, i, plan.outputs[i], slot, record)
+                : cache_run
+                    ? run_cache_frame(setup, bind, cache, o, i, plan.outputs[i], slot, record)
+                    : run_frame(setup, bind, o, o.frames[i], plan.outputs[i], record));
         continue;
       } catch (const Error& e) {
         errors[j] = std::make_unique<Error>(e);
       } catch (const std::bad_alloc&) {
-        errors[j] = std::make_unique<Error>(
-            ErrorKind::Internal, (o.rig ? clip.names[i] : o.frames[i]) + ": out of memory");
+        errors[j] = std::make_unique<Error>(ErrorKind::Internal, label + ": out of memory");
       } catch (const std::exception& e) {
-        errors[j] = std::make_unique<Error>(
-            ErrorKind::Internal, (o.rig ? clip.names[i] : o.frames[i]) + ": " + e.what());
+        errors[j] = std::make_unique<Error>(ErrorKind::Internal, label + ": " + e.what());
       }
       // Fail fast by default: a farm task with a bad frame should fail, not half-succeed
       // (README "Exit codes"). --keep-going writes every good frame and names every bad one.
@@ -508,6 +651,10 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread& t : pool) t.join();
   if (events.frames_end) events.frames_end();
+  // A cache has no holes: it appears only when every chosen frame is in it.
+  const bool all_written =
+      std::none_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; });
+  if (cache_out && all_written) cache_out->commit();
   // Each output was flushed before its rename; flushing the folders makes the renames durable.
   for (const std::string& folder : {o.output, o.dump_dir, o.preview_dir})
     if (!folder.empty()) sync_folder(folder);
@@ -520,6 +667,10 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
       result.failures.push_back(*e);
       log({LogLevel::Error, std::string("skinslide: error: ") + e->what()});
     }
+  if (cache_out && !all_written)
+    log({LogLevel::Error, "skinslide: error: " + plan.cache +
+                              ": not written: " + std::to_string(result.failures.size()) +
+                              " of its samples failed, and a cache cannot have holes"});
   if (!o.report.empty()) {
     report.bind = o.bind;
     report.patch_files = o.patches;

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/types.h"
+#include "io/point_cache.h"
 #include "pipeline/options.h"
 #include "pipeline/rig_frames.h"
 
@@ -28,7 +29,9 @@ struct RunOptions {
   std::string mesh;                  ///< --mesh (name, else index); empty = the only one
   /// --animation (and --fps): BIND is a rigged glTF character, the frames its clip's samples.
   std::optional<RigOptions> rig;
-  std::string rig_format = "glb";  ///< --format of the slid rig frames: "glb" or "obj"
+  /// --format of the slid frames: "obj" or "glb" (a file a frame), "pc2" or "mdd" (one point
+  /// cache); empty = "glb" for `rig`, the cache's own format for a cache FRAME (cache_frames.h).
+  std::string format;
   // Outputs
   std::string output = "slid";  ///< folder of the slid frames, created if missing
   std::string dump_dir;         ///< --dump: EXR images of the nets; empty = none
@@ -57,6 +60,9 @@ struct RunOptions {
 struct FramePlan {
   std::vector<std::string> outputs;  ///< per frame in list order, OUTPUT/<frame's file name>
   std::vector<std::size_t> chosen;   ///< the frames --frames selects: indices, ascending
+  /// The point cache every chosen frame goes to (each frame's output names it too); empty when
+  /// each frame has a file of its own.
+  std::string cache;
 };
 
 /// The plan of a run of FRAME files: OUTPUT/<file name> per frame, and the frames whose file
@@ -67,11 +73,23 @@ struct FramePlan {
 ///        frame's output; with --frames, a frame without a number or a selection of none.
 FramePlan plan_frames(const RunOptions& options);
 
-/// The plan of a --animation run: OUTPUT/<name>.<rig_format> for each of `names`
-/// (RigClip::names, "<character stem>.<frame>"), and those --frames selects by frame number.
+/// The plan of a --animation run: OUTPUT/<name>.<format> for each of `names`
+/// (RigClip::names, "<character stem>.<frame>"), and those --frames selects by frame number;
+/// with a cache format, one cache of the chosen frames (OUTPUT/<character stem>.pc2, or a chunk
+/// named by its first and last frame: cache_frames.h cache_output_path).
 /// \throw Error(Usage) for: a malformed --frames; an output that is BIND or a --patch file; a
-///        --frames selecting none.
+///        --frames selecting none, or, for a cache, frames with gaps between them.
 FramePlan plan_rig_frames(const RunOptions& options, const std::vector<std::string>& names);
+
+/// The plan of a run whose FRAME is a point cache (`cache`, whose samples have the frame names
+/// `names`: cache_frames.h): the samples --frames selects by frame number, and either the cache
+/// they are written to (the FRAME's format: OUTPUT/<cache's file name>, or a chunk named by its
+/// first and last frame) or, with --format obj or glb, OUTPUT/<name>.<format> a sample.
+/// \throw Error(Usage) for: a malformed --frames or one selecting none; a cache chunk with gaps;
+///        --format naming the other cache format; per-frame files for two samples of one frame;
+///        an output or --report that is an input, or a --report that is an output.
+FramePlan plan_cache_frames(const RunOptions& options, const CacheHeader& cache,
+                            const std::vector<std::string>& names);
 
 /// How much a log line tells: cli/ prints Info unless -q, Detail only with -v, Error always.
 enum class LogLevel { Info, Detail, Error };

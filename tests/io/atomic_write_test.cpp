@@ -1,8 +1,12 @@
 #include "io/atomic_write.h"
 
+#include <csignal>
 #include <filesystem>
 
 #include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "core/error.h"
 #include "helpers/meshes.h"
@@ -78,6 +82,57 @@ TEST(AtomicWrite, FailuresAreOutputErrorsNamingThePath) {
   }
   EXPECT_THROW(write_file_atomic(dir + "/missing/sub/out.obj", "x"), Error);
   EXPECT_THROW(read_file(dir + "/none.obj"), Error);
+}
+
+// A child process holding a file half written is ended by `signal_number`: returns how it ended
+// (waitpid's status). `ignore_first`: the child ignores the signal before installing the cleanup.
+int end_child_writing(const std::string& path, int signal_number, bool ignore_first) {
+  int ready[2];
+  if (::pipe(ready) != 0) return -1;
+  const pid_t child = ::fork();
+  if (child == 0) {
+    if (ignore_first) ::signal(signal_number, SIG_IGN);
+    remove_temporaries_on_termination();
+    AtomicFile file(path);
+    file.write(std::string(3 << 20, 'x'));  // past the buffer: bytes in the temporary
+    if (::write(ready[1], "r", 1) != 1) ::_exit(2);
+    for (;;) ::pause();
+  }
+  char byte = 0;
+  const bool started = ::read(ready[0], &byte, 1) == 1;
+  ::close(ready[0]);
+  ::close(ready[1]);
+  ::kill(child, signal_number);
+  if (ignore_first) {
+    ::usleep(100000);  // the signal, ignored, must not end it: SIGKILL does
+    int status = 0;
+    EXPECT_EQ(::waitpid(child, &status, WNOHANG), 0) << "an ignored signal ended the child";
+    ::kill(child, SIGKILL);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return started ? status : -1;
+}
+
+// A scheduler cancelling a task (SIGTERM) or a person pressing Ctrl-C (SIGINT): the half-written
+// file's temporary goes, nothing appears at its name, and the process ends by that signal.
+TEST(AtomicWrite, TerminationRemovesTheTemporariesInFlight) {
+  namespace fs = std::filesystem;
+  for (const int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
+    const std::string dir = test::temp_dir("atomic_term" + std::to_string(signal_number));
+    const int status = end_child_writing(dir + "/out.pc2", signal_number, false);
+    ASSERT_TRUE(WIFSIGNALED(status)) << status;
+    EXPECT_EQ(WTERMSIG(status), signal_number);
+    EXPECT_TRUE(fs::is_empty(dir)) << fs::directory_iterator(dir)->path();
+  }
+  // An ignored signal stays ignored; SIGKILL cannot be caught and leaves the temporary.
+  const std::string dir = test::temp_dir("atomic_term_ignored");
+  const int status = end_child_writing(dir + "/out.pc2", SIGTERM, true);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGKILL);
+  ASSERT_FALSE(fs::is_empty(dir));
+  const std::string left = fs::directory_iterator(dir)->path().filename().string();
+  EXPECT_EQ(left.rfind(".out.pc2.tmp.", 0), 0u) << left;
 }
 
 }  // namespace skinslide

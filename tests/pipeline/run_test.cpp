@@ -94,7 +94,7 @@ TEST(PlanFrames, FramesSelectsByTheNumberInTheFileName) {
 TEST(PlanRigFrames, NamesAndFormatAndSelection) {
   RunOptions o = frames_run({});
   o.rig = RigOptions{};
-  o.rig_format = "obj";
+  o.format = "obj";
   const std::vector<std::string> names = {"Rig.0000", "Rig.0001", "Rig.0002"};
   FramePlan plan = plan_rig_frames(o, names);
   EXPECT_EQ(plan.outputs,
