@@ -30,6 +30,9 @@ expect() {
   local out=$tmp/out/$name
   if [ "$1" = -o ]; then
     out=$2
+  elif [ "$1" = join ]; then  # `skinslide join [-o DIR] CHUNK...`
+    shift
+    set -- join -o "$out" "$@"
   else
     set -- -o "$out" "$@"
   fi
@@ -49,7 +52,7 @@ expect() {
     [ -n "$(find "$out" -type f)" ]; then
     fail "$name: a failed run left files: $(ls -A "$out")"
     ok=0
-  elif [ -d "$out" ] && grep -rqiE '(^|[ /])[-+]?(nan|inf)' "$out"; then
+  elif [ -d "$out" ] && grep -rqiIE '(^|[ /])[-+]?(nan|inf)' "$out"; then
     fail "$name: an output holds a NaN or an infinity"
     ok=0
   fi
@@ -219,6 +222,93 @@ head -c 300 $G >"$tmp/cut.gltf"
 expect gltf_truncated_json 3 "cut.gltf: not a readable glTF 2.0 file: [json.exception.parse_error.101] parse error at line 1, column 301" --patch $P --animation 0 "$tmp/cut.gltf"
 printf 'glTF\x02\x00\x00\x00\xff\xff\x00\x00JSON' >"$tmp/cut.glb"
 expect gltf_truncated_glb 3 "cut.glb: not a readable glTF 2.0 file" --patch $P --animation 0 "$tmp/cut.glb"
+
+# --- point caches (PC2, MDD: lib/io/README.md "Point caches") ----------------------------------
+# cache NAME EDIT: grid.0001.obj and grid.0002.obj as a cache of two samples (NAME ending .pc2:
+# frames 1-2; .mdd: 0 and 1/24 s), written as Blender's exporters write them, then EDIT (Python
+# on its bytes `b`) applied, as $tmp/NAME.
+cache() {
+  /usr/bin/python3 - "$tmp/$1" "$2" $F grid.0002.obj <<'PY'
+import struct, sys
+out, edit = sys.argv[1], sys.argv[2]
+frames = [[tuple(map(float, l.split()[1:4])) for l in open(p) if l.startswith("v ")]
+          for p in sys.argv[3:]]
+n = len(frames[0])
+if out.endswith(".pc2"):
+    b = struct.pack("<12siiffi", b"POINTCACHE2\0", 1, n, 1.0, 1.0, len(frames))
+    b += b"".join(struct.pack("<3f", *p) for v in frames for p in v)
+else:
+    b = struct.pack(">2i", len(frames), n) + struct.pack(">2f", 0.0, 1 / 24)
+    b += b"".join(struct.pack(">3f", *p) for v in frames for p in v)
+b = bytearray(b)
+exec(edit)
+open(out, "wb").write(bytes(b))
+PY
+}
+cache shot.pc2 ''
+cache shot.mdd ''
+expect cache_pc2_valid 0 "2 frames slid" --patch $P $B "$tmp/shot.pc2"
+expect cache_mdd_valid 0 "2 frames slid" --patch $P $B "$tmp/shot.mdd"
+: >"$tmp/empty.pc2"
+expect cache_empty 3 "empty.pc2: the file is empty (0 bytes)" --patch $P $B "$tmp/empty.pc2"
+cache magic.pc2 'b[0:11] = b"POINTCACHE3"'
+expect cache_pc2_wrong_magic 3 'magic.pc2: not a PC2 point cache: it does not start with "POINTCACHE2\0"' --patch $P $B "$tmp/magic.pc2"
+cache version.pc2 'b[12:16] = struct.pack("<i", 2)'
+expect cache_pc2_wrong_version 3 "version.pc2: byte 12: PC2 version 2; only version 1 exists" --patch $P $B "$tmp/version.pc2"
+cache header.pc2 'del b[20:]'
+expect cache_pc2_cut_in_header 3 "header.pc2: truncated: a PC2 header is 32 bytes; the file has 20" --patch $P $B "$tmp/header.pc2"
+cache cut.pc2 'del b[300:]'
+expect cache_pc2_cut_in_sample 3 "cut.pc2: truncated: the header says 2 samples of 16 points; the file has 300 bytes, which hold 1 of them (sample 1 is cut at byte 300)" --patch $P $B "$tmp/cut.pc2"
+cache long.pc2 'b += bytes(12)'
+expect cache_pc2_bytes_past_the_end 3 "long.pc2: the header says 2 samples of 16 points (416 bytes); the file has 428: 12 bytes past the last sample" --patch $P $B "$tmp/long.pc2"
+cache zero.pc2 'b[28:32] = struct.pack("<i", 0); del b[32:]'
+expect cache_pc2_zero_samples 3 "zero.pc2: byte 28: the sample count is 0: the cache holds no samples" --patch $P $B "$tmp/zero.pc2"
+cache huge.pc2 'b[16:20] = struct.pack("<i", 2**31 - 1); b[28:32] = struct.pack("<i", 2**31 - 1)'
+expect cache_pc2_huge_counts 3 "huge.pc2: truncated: the header says 2147483647 samples of 2147483647 points; the file has 416 bytes, which hold 0 of them" --patch $P $B "$tmp/huge.pc2"
+cache rate.pc2 'b[24:28] = struct.pack("<f", 0)'
+expect cache_pc2_zero_rate 3 "rate.pc2: byte 24: sampleRate 0: the frames from one sample to the next must be a finite number above 0" --patch $P $B "$tmp/rate.pc2"
+cache points.pc2 'b[16:20] = struct.pack("<i", 15); del b[32 + 2 * 15 * 12:]'
+expect cache_points_not_the_binds 3 "points.pc2: has 15 points; the bind (grid.obj) has 16 vertices: a cache must hold one point per bind vertex, in the bind's order" --patch $P $B "$tmp/points.pc2"
+cache nan.pc2 'b[288:292] = struct.pack("<f", float("nan"))'
+expect cache_pc2_nan 3 "nan.pc2: byte 288: sample 1, point 5: coordinate y is NaN" --patch $P $B "$tmp/nan.pc2"
+cache inf.mdd 'b[24:28] = struct.pack(">f", float("-inf"))'
+expect cache_mdd_inf 3 "inf.mdd: byte 24: sample 0, point 0: coordinate z is infinite" --patch $P $B "$tmp/inf.mdd"
+cache times.mdd 'b[12:16] = struct.pack(">f", 0.0)'
+expect cache_mdd_times_not_increasing 3 "times.mdd: byte 12: the time of sample 1 (0 s) is not after sample 0's (0 s): MDD times must increase" --patch $P $B "$tmp/times.mdd"
+cache none.mdd 'b[0:4] = struct.pack(">i", 0); del b[8:]'
+expect cache_mdd_zero_samples 3 "none.mdd: byte 0: the sample count is 0: the cache holds no samples" --patch $P $B "$tmp/none.mdd"
+cache cut_times.mdd 'b[0:4] = struct.pack(">i", 1000)'
+expect cache_mdd_times_past_the_end 3 "cut_times.mdd: truncated: the header says 1000 samples of 16 points, whose header alone is 4008 bytes; the file has 400" --patch $P $B "$tmp/cut_times.mdd"
+cache cut.mdd 'del b[7:]'
+expect cache_mdd_cut_in_counts 3 "cut.mdd: truncated: an MDD file starts with two 4-byte counts; the file has 7 bytes" --patch $P $B "$tmp/cut.mdd"
+expect cache_among_frames 2 "a point cache is a whole shot: give it as the only FRAME" --patch $P $B "$tmp/shot.pc2" $F
+expect cache_frames_none 2 "--frames 5-9 selects none of the cache's 2 samples (frames 1 to 2)" --frames 5-9 --patch $P $B "$tmp/shot.pc2"
+expect cache_format_other_cache 2 "--format mdd: $tmp/shot.pc2 is a pc2 cache" --format mdd --patch $P $B "$tmp/shot.pc2"
+expect cache_format_glb_obj_bind 2 "glb from a point cache needs a .gltf or .glb BIND" --format glb --patch $P $B "$tmp/shot.pc2"
+expect format_without_cache_or_animation 2 "--format: applies to --animation or a point cache FRAME" --format obj --patch $P $B $F
+# An output that is its input: refused before anything is written, the input untouched.
+mkdir -p "$tmp/cache_in"
+cp "$tmp/shot.pc2" "$tmp/cache_in/"
+"$bin" -o "$tmp/cache_in" --patch $P $B "$tmp/cache_in/shot.pc2" >"$tmp/stdout" 2>"$tmp/stderr"
+rc=$?
+if [ "$rc" -ne 2 ] || ! grep -qF "output $tmp/cache_in/shot.pc2 would overwrite input $tmp/cache_in/shot.pc2" "$tmp/stderr"; then
+  fail "cache_output_is_input: exit $rc"
+elif ! cmp -s "$tmp/shot.pc2" "$tmp/cache_in/shot.pc2" || [ "$(ls -A "$tmp/cache_in" | wc -l)" -ne 1 ]; then
+  fail "cache_output_is_input: the folder of the input changed"
+else
+  passed=$((passed + 1))
+fi
+# Farm chunks and their join (`skinslide join`): a three-sample cache, frames 1-3.
+cache shot3.pc2 'b[28:32] = struct.pack("<i", 3); b += b[32 + 16 * 12:]'
+mkdir -p "$tmp/chunks"
+for range in 1 2-3 3; do "$bin" -q --frames $range -o "$tmp/chunks" --patch $P $B "$tmp/shot3.pc2"; done
+"$bin" -q -o "$tmp/whole" --patch $P $B "$tmp/shot3.pc2"
+expect cache_frames_with_a_step 2 "--frames selects samples with gaps between them (frames 1 to 3, 2 samples)" --frames 1-3:2 --patch $P $B "$tmp/shot3.pc2"
+expect join_valid 0 "2 chunks, 3 samples of 16 points" join "$tmp/chunks/shot3.0002-0003.pc2" "$tmp/chunks/shot3.0001-0001.pc2"
+cmp -s "$tmp/out/join_valid/shot3.pc2" "$tmp/whole/shot3.pc2" || fail "join_valid: not the one-task cache"
+expect join_a_gap 3 "shot3.0003-0003.pc2: starts at frame 3 but the chunks before it end one sample before frame 2: the samples between are missing" join "$tmp/chunks/shot3.0001-0001.pc2" "$tmp/chunks/shot3.0003-0003.pc2"
+expect join_an_overlap 3 "shot3.0003-0003.pc2: frames 3-3 overlap $tmp/chunks/shot3.0002-0003.pc2's frames 2-3" join "$tmp/chunks/shot3.0002-0003.pc2" "$tmp/chunks/shot3.0003-0003.pc2"
+expect join_not_a_chunk 3 "shot.pc2: not a chunk's name: expected <shot>.<first>-<last>.pc2 or .mdd" join "$tmp/shot.pc2"
 
 # --- files and folders -------------------------------------------------------------------------
 expect file_missing_bind 3 "nothere.obj: cannot read: No such file or directory" --patch $P "$tmp/nothere.obj" $F

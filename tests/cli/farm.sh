@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Identical bytes on every farm: outputs do not depend on --threads (1, 2, 8), on running the
 # frames all together, one at a time or in reverse order, on which run it is, nor on splitting a
-# shot into --frames chunks run side by side (xargs -P) as a render farm does. And a run killed
+# shot into --frames chunks run side by side (xargs -P) as a render farm does, as OBJ frames or
+# as a point cache whose chunks are joined (`skinslide join`). And a run killed
 # with SIGKILL leaves each output either as it was before or complete, never partial. The default
 # method (elastic) throughout; thread counts, order and the farm split with --method paper too.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/farm.sh
@@ -100,6 +101,29 @@ check "--frames 1-24:5,3,20-21 writes frames 1 3 6 11 16 20 21" test \
 for f in "$tmp/step"/*; do
   check "$(basename "$f") from --frames is the whole run's" cmp "$f" "$tmp/t1/$(basename "$f")"
 done
+
+# --- a point cache split into chunks ------------------------------------------------------------
+# The same shot as one PC2 cache (frames 1-24): each chunk is a cache of its own
+# (shot.0001-0010.pc2, ...; the last clamped to 0021-0024), and `skinslide join` makes the whole
+# shot's cache from them, byte for byte the one-task run's.
+/usr/bin/python3 - "$tmp/shot.pc2" "${frames[@]}" <<'PY'
+import struct, sys
+frames = [[tuple(map(float, l.split()[1:4])) for l in open(p) if l.startswith("v ")]
+          for p in sys.argv[2:]]
+with open(sys.argv[1], "wb") as f:
+    f.write(struct.pack("<12siiffi", b"POINTCACHE2\0", 1, len(frames[0]), 1.0, 1.0, len(frames)))
+    for v in frames:
+        f.write(b"".join(struct.pack("<3f", *p) for p in v))
+PY
+check "the whole cache, one task" slide -j 2 -o "$tmp/cache1" "$tmp/shot.pc2"
+check "the cache's chunks run side by side (xargs -P 3)" \
+  xargs -P 3 -I RANGE "$bin" -q -j 1 --frames RANGE -o "$tmp/cachefarm" --patch data/elbow/patch.txt \
+  data/elbow/bind.obj "$tmp/shot.pc2" <"$tmp/chunks"
+check "the chunks are named by their frames" test "$(cd "$tmp/cachefarm" && echo *)" = \
+  "shot.0001-0010.pc2 shot.0011-0020.pc2 shot.0021-0024.pc2"
+check "skinslide join" "$bin" join -q "$tmp"/cachefarm/shot.*-*.pc2
+check "the joined chunks are the one-task cache, byte for byte" cmp "$tmp/cache1/shot.pc2" "$tmp/cachefarm/shot.pc2"
+check "the slid cache is not the input" bash -c "! cmp -s '$tmp/shot.pc2' '$tmp/cache1/shot.pc2'"
 
 # --- SIGKILL mid-run ----------------------------------------------------------------------------
 # The output folder starts with an older complete version of every output (the unslid frame).
