@@ -23,7 +23,7 @@
 #
 # --peers: also the elastic method's table (the command's default), beside the peer a pipeline
 # would use instead, Blender's Corrective Smooth modifier (delta mush; Debian's blender, installed
-# with apt-get when missing; a benchmark tool only), on the synthetic cases of --peer-sizes
+# by scripts/deps.sh when missing; a benchmark tool only), on the synthetic cases of --peer-sizes
 # (default "40000 100000 490000 1000000"; cases are generated as above). Per case, one run each:
 #   - Corrective Smooth (below 1M vertices), 10 iterations, one thread (blender -t 1), rest = the
 #     bind, vertex group = the patch's free vertices, on the case's first frame
@@ -92,9 +92,9 @@ blender=${BLENDER:-blender}
 if [ "$peers" = 1 ]; then
   [ -n "$peer_sizes" ] || peer_sizes="40000 100000 490000 1000000"
   if ! command -v "$blender" >/dev/null; then
-    echo "bench: --peers needs Blender: apt-get install -y blender (large)" >&2
-    if ! { apt-get install -y blender || { apt-get update && apt-get install -y blender; }; } \
-      >"$work/apt-blender.log" 2>&1 || ! command -v "$blender" >/dev/null; then
+    echo "bench: --peers needs Blender: scripts/deps.sh blender (large)" >&2
+    if ! "$root/scripts/deps.sh" blender >"$work/apt-blender.log" 2>&1 ||
+      ! command -v "$blender" >/dev/null; then
       tail -n 20 "$work/apt-blender.log" >&2
       echo "bench: could not install blender" >&2
       exit 1

@@ -16,7 +16,7 @@
 #                        modifier (delta mush), 10 iterations, rest = the bind, restricted to the
 #                        patch's free vertices by a vertex group (scripts/corrective_smooth.py has
 #                        the exact set-up). One headless Blender per case for all its frames.
-#                        Needs `blender` (Debian's 3.4.1: installed with apt-get when missing and
+#                        Needs `blender` (Debian's 3.4.1: installed by scripts/deps.sh when missing and
 #                        this method is asked for; when that fails and the method was not named
 #                        in --methods, its rows say n/a). A benchmark peer only, never a
 #                        dependency. s/frame includes Blender's start and mesh build (about 1-2 s
@@ -143,9 +143,9 @@ fi
 BLENDER=${BLENDER:-blender}
 has_blender=1
 if [[ ,$methods, == *,corrective-smooth,* ]] && ! command -v "$BLENDER" >/dev/null; then
-    echo "quality.sh: corrective-smooth needs Blender: apt-get install -y blender (large)" >&2
-    if ! { apt-get install -y blender || { apt-get update && apt-get install -y blender; }; } \
-        >"$work/apt-blender.log" 2>&1 || ! command -v "$BLENDER" >/dev/null; then
+    echo "quality.sh: corrective-smooth needs Blender: scripts/deps.sh blender (large)" >&2
+    if ! "$root/scripts/deps.sh" blender >"$work/apt-blender.log" 2>&1 ||
+        ! command -v "$BLENDER" >/dev/null; then
         tail -n 20 "$work/apt-blender.log" >&2
         if [[ $methods_given == 1 ]]; then
             echo "quality.sh: could not install blender" >&2
