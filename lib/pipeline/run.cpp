@@ -461,6 +461,53 @@ std::vector<LogLine> run_rig_frame(const BindSetup& setup, const MeshFile& chara
   return frame_lines(setup, result, label, out_path);
 }
 
+// A run's frames besides FRAME files: a rigged character's clip or a point cache's samples; and
+// where every frame goes.
+struct FrameSource {
+  FramePlan plan;
+  RigClip clip;       // --animation
+  CacheFrames cache;  // a point cache FRAME
+};
+
+// The plan of FRAME files is made before the bind is read; a clip's and a cache's once the
+// character or the cache's header is: with --animation, BIND is a rigged glTF character whose
+// frames are its skin posed at the clip's sampled times (pipeline/rig_frames.h); a cache's
+// frames are its samples (pipeline/cache_frames.h).
+FrameSource frame_source(const RunOptions& o, const MeshFile& bind, FramePlan files,
+                         bool cache_run) {
+  FrameSource source;
+  source.plan = std::move(files);
+  if (o.rig) {
+    source.clip = rig_clip(bind, *o.rig);
+    source.plan = plan_rig_frames(o, source.clip.names);
+  }
+  if (cache_run) {
+    source.cache = open_cache_frames(o.frames.front(), bind);
+    source.plan = plan_cache_frames(o, source.cache.cache->header(), source.cache.names);
+    std::vector<std::string> dump_names;
+    for (size_t k : source.plan.chosen) dump_names.push_back(source.cache.names[k] + ".cache");
+    if (!o.dump_dir.empty() || !o.preview_dir.empty()) check_dump_stems(dump_names);
+  }
+  return source;
+}
+
+// Frame i of the run, for its errors.
+const std::string& frame_label(const RunOptions& o, const FrameSource& source, size_t i) {
+  if (o.rig) return source.clip.names[i];
+  return source.cache.cache ? source.cache.names[i] : o.frames[i];
+}
+
+// Frame i of the run: read (or posed), slid and written; its log lines.
+std::vector<LogLine> run_source_frame(const BindSetup& setup, const MeshFile& bind,
+                                      const FrameSource& source, const RunOptions& o, size_t i,
+                                      CacheSlot slot, ReportFrame* record) {
+  const std::string& out = source.plan.outputs[i];
+  if (o.rig) return run_rig_frame(setup, bind, source.clip, o, i, out, slot, record);
+  if (source.cache.cache)
+    return run_cache_frame(setup, bind, source.cache, o, i, out, slot, record);
+  return run_frame(setup, bind, o, o.frames[i], out, record);
+}
+
 }  // namespace
 
 FramePlan plan_frames(const RunOptions& o) {
@@ -551,28 +598,15 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   // A rig run's frames are known once the character is read, a cache's once its header is;
   // their --frames is checked before.
   const bool cache_run = !o.rig && is_cache_run(o.frames);
-  const bool dumps = !o.dump_dir.empty() || !o.preview_dir.empty();
-  if (o.rig || cache_run) (void)frame_ranges(o);
-  FramePlan plan = o.rig || cache_run ? FramePlan{} : plan_frames(o);
-  if (!o.rig && !cache_run && dumps) check_dump_stems(o.frames);
+  const bool files = !o.rig && !cache_run;
+  if (!files) (void)frame_ranges(o);
+  FramePlan files_plan = files ? plan_frames(o) : FramePlan{};
+  if (files && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
 
-  // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored, the
-  // frames its skin posed at the clip's sampled times (pipeline/rig_frames.h).
+  // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored.
   MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
-  RigClip clip;
-  if (o.rig) {
-    clip = rig_clip(bind, *o.rig);
-    plan = plan_rig_frames(o, clip.names);
-  }
-  // A point cache FRAME: its samples are the frames (pipeline/cache_frames.h).
-  CacheFrames cache;
-  if (cache_run) {
-    cache = open_cache_frames(o.frames.front(), bind);
-    plan = plan_cache_frames(o, cache.cache->header(), cache.names);
-    std::vector<std::string> dump_names;
-    for (size_t k : plan.chosen) dump_names.push_back(cache.names[k] + ".cache");
-    if (dumps) check_dump_stems(dump_names);
-  }
+  const FrameSource source = frame_source(o, bind, std::move(files_plan), cache_run);
+  const FramePlan& plan = source.plan;
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
@@ -603,8 +637,8 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   // A cache output is written sample by sample at its offsets, renamed into place once complete.
   std::unique_ptr<CacheWriter> cache_out;
   if (!plan.cache.empty())
-    cache_out =
-        std::make_unique<CacheWriter>(plan.cache, output_cache_header(o, plan, bind, clip, cache));
+    cache_out = std::make_unique<CacheWriter>(
+        plan.cache, output_cache_header(o, plan, bind, source.clip, source.cache));
 
   const std::vector<size_t>& chosen = plan.chosen;
   const size_t count = chosen.size();
@@ -623,14 +657,11 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   auto worker = [&] {
     for (size_t j; !stop && (j = next++) < count;) {
       const size_t i = chosen[j];
-      const std::string& label = o.rig ? clip.names[i] : cache_run ? cache.names[i] : o.frames[i];
+      const std::string& label = frame_label(o, source, i);
       const CacheSlot slot{cache_out.get(), j};  // the chosen frames are one run of samples
       try {
         ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
-        done(j, o.rig ? run_rig_frame(setup, bind, clip, o, i, plan.outputs[i], slot, record)
-                : cache_run
-                    ? run_cache_frame(setup, bind, cache, o, i, plan.outputs[i], slot, record)
-                    : run_frame(setup, bind, o, o.frames[i], plan.outputs[i], record));
+        done(j, run_source_frame(setup, bind, source, o, i, slot, record));
         continue;
       } catch (const Error& e) {
         errors[j] = std::make_unique<Error>(e);
