@@ -70,6 +70,18 @@ void refuse_overwrite(const std::string& target, const std::vector<std::string>&
                                         "; choose another --output folder");
 }
 
+// A cache output and, for a chunk, the shot's cache its join makes in that folder
+// (`skinslide join`): neither may be an input, or the join would replace the shot it came from.
+void refuse_cache_overwrite(const std::string& cache, const std::string& joined,
+                            const std::vector<std::string>& inputs) {
+  refuse_overwrite(cache, inputs);
+  for (const std::string& in : inputs)
+    if (cache != joined && same_file(joined, in))
+      throw Error(ErrorKind::Usage, "output " + cache + ": its chunks would join into " + joined +
+                                        ", which is input " + in +
+                                        "; choose another --output folder");
+}
+
 // The report must overwrite neither an input nor an output.
 void refuse_report_overwrite(const RunOptions& o, const std::vector<std::string>& inputs,
                              const std::vector<std::string>& outputs) {
@@ -546,9 +558,10 @@ FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& n
     CacheHeader whole;
     whole.format = format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd;
     whole.samples = static_cast<std::int32_t>(names.size());
-    plan.cache = cache_output_path(o.output, fs::path(o.bind).stem().string(), "." + format, whole,
-                                   plan.chosen);
-    refuse_overwrite(plan.cache, inputs);
+    const std::string stem = fs::path(o.bind).stem().string();
+    plan.cache = cache_output_path(o.output, stem, "." + format, whole, plan.chosen);
+    refuse_cache_overwrite(plan.cache, (fs::path(o.output) / (stem + "." + format)).string(),
+                           inputs);
     plan.outputs.assign(names.size(), plan.cache);
   }
   return plan;
@@ -571,7 +584,7 @@ FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
     const fs::path input(o.frames.front());
     plan.cache = cache_output_path(o.output, input.stem().string(), input.extension().string(),
                                    cache, plan.chosen);
-    refuse_overwrite(plan.cache, inputs);
+    refuse_cache_overwrite(plan.cache, (fs::path(o.output) / input.filename()).string(), inputs);
     plan.outputs.assign(names.size(), plan.cache);
   } else {
     plan.outputs.resize(names.size());

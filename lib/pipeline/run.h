@@ -87,7 +87,8 @@ FramePlan plan_rig_frames(const RunOptions& options, const std::vector<std::stri
 /// first and last frame) or, with --format obj or glb, OUTPUT/<name>.<format> a sample.
 /// \throw Error(Usage) for: a malformed --frames or one selecting none; a cache chunk with gaps;
 ///        --format naming the other cache format; per-frame files for two samples of one frame;
-///        an output or --report that is an input, or a --report that is an output.
+///        an output or --report that is an input, or a chunk in the input's folder (the join
+///        of the chunks would replace the input); a --report that is an output.
 FramePlan plan_cache_frames(const RunOptions& options, const CacheHeader& cache,
                             const std::vector<std::string>& names);
 

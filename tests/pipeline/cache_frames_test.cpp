@@ -206,6 +206,13 @@ TEST(CacheFrames, Refusals) {
   EXPECT_EQ(refusal(o, ErrorKind::Usage), "output " + dir / "elbow.pc2" +
                                               " would overwrite input " + dir / "elbow.pc2" +
                                               "; choose another --output folder");
+  // A chunk beside its input: joining the chunks would replace the shot they came from.
+  o.frame_ranges = "1-2";
+  EXPECT_EQ(refusal(o, ErrorKind::Usage), "output " + dir / "elbow.0001-0002.pc2" +
+                                              ": its chunks would join into " + dir / "elbow.pc2" +
+                                              ", which is input " + dir / "elbow.pc2" +
+                                              "; choose another --output folder");
+  o.frame_ranges = "";
   for (CacheSample& s : samples) s.resize(s.size() - 3);  // one point short
   write_cache(dir / "short.pc2", samples);
   o = cache_run(dir / "short.pc2", dir / "out");
