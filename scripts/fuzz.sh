@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
 # Builds a libFuzzer target with clang (-fsanitize=fuzzer,address,undefined) and runs it.
-# Usage: scripts/fuzz.sh obj|patch|gltf SECONDS [libFuzzer options...]
+# Usage: scripts/fuzz.sh obj|patch|gltf|pc2|mdd SECONDS [libFuzzer options...]
 # The seed corpus is tests/fuzz/corpus/TARGET (read only); new inputs go to
 # build-fuzz/corpus/TARGET, crashes to build-fuzz/crashes/TARGET. A crashing input belongs in
 # tests/fuzz/regressions/TARGET once fixed (tests/fuzz/regressions_test.cpp parses each file).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-target=${1:?usage: scripts/fuzz.sh obj|patch|gltf SECONDS}
-seconds=${2:?usage: scripts/fuzz.sh obj|patch|gltf SECONDS}
+target=${1:?usage: scripts/fuzz.sh obj|patch|gltf|pc2|mdd SECONDS}
+seconds=${2:?usage: scripts/fuzz.sh obj|patch|gltf|pc2|mdd SECONDS}
 shift 2
-case $target in obj | patch | gltf) ;; *) echo "fuzz.sh: unknown target '$target' (obj, patch, gltf)" >&2; exit 2 ;; esac
+case $target in obj | patch | gltf | pc2 | mdd) ;; *) echo "fuzz.sh: unknown target '$target' (obj, patch, gltf, pc2, mdd)" >&2; exit 2 ;; esac
 
 SKINSLIDE_FUZZ_DEPS=1 "$root/scripts/deps.sh"
 build=${SKINSLIDE_FUZZ_BUILD_DIR:-$root/build-fuzz}

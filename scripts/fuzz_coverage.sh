@@ -3,11 +3,11 @@
 # targets with clang's source-based coverage (no sanitizers), runs each once over its corpus
 # (build-fuzz/corpus/TARGET from scripts/fuzz.sh, plus the seeds) and prints llvm-cov's report
 # for the files each target exercises.
-# Usage: scripts/fuzz_coverage.sh [obj|patch|gltf...]   (default: all three)
+# Usage: scripts/fuzz_coverage.sh [obj|patch|gltf|pc2|mdd...]   (default: all five)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(obj patch gltf)
+[ ${#targets[@]} -eq 0 ] && targets=(obj patch gltf pc2 mdd)
 
 SKINSLIDE_FUZZ_DEPS=1 "$root/scripts/deps.sh"
 build=${SKINSLIDE_FUZZ_COVERAGE_DIR:-$root/build-fuzz-coverage}
@@ -28,7 +28,8 @@ for t in "${targets[@]}"; do
     obj) files=(lib/io/obj_read.cpp lib/io/obj_rewrite.cpp lib/io/number_format.cpp) ;;
     patch) files=(lib/io/patch_file.cpp) ;;
     gltf) files=(lib/io/gltf.cpp lib/io/gltf_accessor.cpp) ;;
-    *) echo "fuzz_coverage.sh: unknown target '$t' (obj, patch, gltf)" >&2; exit 2 ;;
+    pc2 | mdd) files=(lib/io/point_cache.cpp lib/io/cache_chunks.cpp) ;;
+    *) echo "fuzz_coverage.sh: unknown target '$t' (obj, patch, gltf, pc2, mdd)" >&2; exit 2 ;;
   esac
   dirs=("$root/tests/fuzz/corpus/$t")
   [ -d "$corpora/$t" ] && dirs+=("$corpora/$t")

@@ -14,6 +14,7 @@
 #include "io/obj_read.h"
 #include "io/obj_rewrite.h"
 #include "io/patch_file.h"
+#include "io/point_cache.h"
 
 namespace skinslide {
 namespace {
@@ -33,6 +34,12 @@ void read_obj_checked(const std::string& path) {
 void read_patch_checked(const std::string& path) { selected_faces(read_patch(path), 1000); }
 
 void read_gltf_checked(const std::string& path) { read_gltf_file(path, {}); }
+
+// Every sample too: a cache's coordinates are checked as they are read.
+void read_cache_checked(const std::string& path) {
+  const CacheReader cache(path);
+  for (int k = 0; k < cache.header().samples; ++k) cache.sample(k);
+}
 
 // Runs `read` on every file of kFuzzDir/sub/target; returns how many there were.
 int each_file(const std::string& sub, const std::string& target, const Reader& read,
@@ -59,8 +66,11 @@ struct Target {
   Reader read;
 };
 
-const Target kTargets[] = {
-    {"obj", read_obj_checked}, {"patch", read_patch_checked}, {"gltf", read_gltf_checked}};
+const Target kTargets[] = {{"obj", read_obj_checked},
+                           {"patch", read_patch_checked},
+                           {"gltf", read_gltf_checked},
+                           {"pc2", read_cache_checked},
+                           {"mdd", read_cache_checked}};
 
 TEST(FuzzInputs, EverySeedReads) {
   for (const Target& t : kTargets)
