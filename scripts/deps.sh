@@ -47,6 +47,10 @@ if [ "$(id -u)" -ne 0 ]; then
   SUDO="sudo"
 fi
 export DEBIAN_FRONTEND=noninteractive
+# One apt-get at a time: tests that install their tools may start together (ctest -j), and a
+# second apt-get would fail on dpkg's lock rather than wait for it.
+exec 9>"${TMPDIR:-/tmp}/skinslide-deps.$(id -u).lock"
+flock 9
 # The package lists first: a fresh image has none, and stale ones name versions long gone.
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
