@@ -76,6 +76,8 @@ void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3&
     const ElasticResult relaxed = relax_patch(*patch.elastic, points, opt.elastic);
     s.add("relax", ms_since(t0));
     s.add("elastic_iterations", relaxed.iterations);
+    s.add("elastic_solves", relaxed.solves);
+    s.add("elastic_cg_iterations", relaxed.solver_iterations);
     return;
   }
   const std::vector<double> q =
