@@ -1,6 +1,8 @@
 #include "elastic/step_direction.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
@@ -55,32 +57,60 @@ void apply_system(const ElasticMetric& metric, const std::vector<TangentFrame>& 
 
 ElasticMetric elastic_metric(const ArapTriangles& mesh, const std::vector<Index>& movable_slot,
                              Index count) {
-  std::vector<Triplet> entries;
-  for (Index t = 0; t < mesh.count; ++t) {
-    const Eigen::Matrix2d& D = mesh.rest_inverse[t];
-    if (!has_rest_shape(D)) continue;
-    const std::array<Vec2, 3> G = gradient_rows(D);
-    const Triangle& tri = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k)
-      for (int l = 0; l < 3; ++l) {
-        const Index i = movable_slot[tri[k]], j = movable_slot[tri[l]];
-        if (i >= 0 && j >= 0) entries.emplace_back(i, j, 2 * mesh.weight * G[k].dot(G[l]));
-      }
-  }
-  // Every movable vertex keeps a diagonal entry, even with no rest shape around it.
-  for (Index i = 0; i < count; ++i) entries.emplace_back(i, i, 0.0);
-  SparseMatrix K(count, count);
-  K.setFromTriplets(entries.begin(), entries.end());
-  K.makeCompressed();
+  // Per movable vertex the triangles around it (with a rest shape), ascending.
+  std::vector<Index> around_start(count + 1, 0), around;
+  for (Index t = 0; t < mesh.count; ++t)
+    if (has_rest_shape(mesh.rest_inverse[t]))
+      for (Index v : mesh.triangles[t])
+        if (const Index i = movable_slot[v]; i >= 0) ++around_start[i + 1];
+  for (Index i = 0; i < count; ++i) around_start[i + 1] += around_start[i];
+  around.resize(around_start[count]);
+  std::vector<Index> fill(around_start.begin(), around_start.end() - 1);
+  for (Index t = 0; t < mesh.count; ++t)
+    if (has_rest_shape(mesh.rest_inverse[t]))
+      for (Index v : mesh.triangles[t])
+        if (const Index i = movable_slot[v]; i >= 0) around[fill[i]++] = t;
+  // Row i: sum over its triangles of 2 w G_k . G_l, entries merged by column in triangle order
+  // (every movable vertex keeps a diagonal entry, even with no rest shape around it).
   ElasticMetric out;
-  // K is symmetric: its compressed columns are its compressed rows.
-  out.start.assign(K.outerIndexPtr(), K.outerIndexPtr() + count + 1);
-  out.column.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
-  out.value.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+  out.start.assign(1, 0);
+  std::vector<std::pair<Index, double>> row;
+  for (Index i = 0; i < count; ++i) {
+    row.assign(1, {i, 0.0});
+    for (Index a = around_start[i]; a < around_start[i + 1]; ++a) {
+      const Index t = around[a];
+      const Triangle& tri = mesh.triangles[t];
+      const std::array<Vec2, 3> G = gradient_rows(mesh.rest_inverse[t]);
+      const int k = movable_slot[tri[0]] == i ? 0 : movable_slot[tri[1]] == i ? 1 : 2;
+      for (int l = 0; l < 3; ++l)
+        if (const Index j = movable_slot[tri[l]]; j >= 0)
+          row.emplace_back(j, 2 * mesh.weight * G[k].dot(G[l]));
+    }
+    std::stable_sort(row.begin(), row.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (size_t e = 0; e < row.size(); ++e) {
+      if (e > 0 && row[e].first == row[e - 1].first) {
+        out.value.back() += row[e].second;
+        continue;
+      }
+      out.column.push_back(row[e].first);
+      out.value.push_back(row[e].second);
+    }
+    out.start.push_back(static_cast<Index>(out.column.size()));
+  }
   if (count == 0) return out;
-  out.shift = kShift * K.diagonal().sum() / count + 1e-300;
-  for (Index i = 0; i < count; ++i) K.coeffRef(i, i) += out.shift;
-  out.factor = cholesky_factor(K);
+  double trace = 0;
+  std::vector<double> shifted = out.value;
+  for (Index i = 0; i < count; ++i)
+    for (Index e = out.start[i]; e < out.start[i + 1]; ++e)
+      if (out.column[e] == i) trace += out.value[e];
+  out.shift = kShift * trace / count + 1e-300;
+  for (Index i = 0; i < count; ++i)
+    for (Index e = out.start[i]; e < out.start[i + 1]; ++e)
+      if (out.column[e] == i) shifted[e] += out.shift;
+  // K is symmetric: its compressed rows are its compressed columns.
+  out.factor =
+      cholesky_factor(SymmetricView{count, out.start.data(), out.column.data(), shifted.data()});
   return out;
 }
 
