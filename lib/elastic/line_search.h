@@ -44,6 +44,10 @@ struct LineSearchResult {
   SlideState state;      ///< the new state when accepted
 };
 
+/// The smallest positive step along `node_d` (per chart node) at which chart triangle t's signed
+/// area vanishes (Smith & Schaefer 2015), infinite when none.
+double fold_root(const Chart& chart, const Positions2& node_uv, const Positions2& node_d, Index t);
+
 /// The smallest positive share of `step` at which one of the slid triangles with a moving corner
 /// folds over in the chart (its signed area, a quadratic in the share, vanishes: Smith &
 /// Schaefer 2015); infinite when none does. With `roots`, every patch triangle's own (infinite
