@@ -278,8 +278,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 100000))
       ->group(method);
   app.add_option("--tolerance", o.tolerance,
-                 "Elastic: a round stops once two steps in a row each lower its energy by less "
-                 "than this fraction of its starting energy")
+                 "Elastic: a round stops at the first step that lowers its energy by less than "
+                 "this fraction of its starting energy")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(method);

@@ -72,7 +72,7 @@ PatchFrameReport slide_patch_elastic(const BindSetup& setup, const PatchNet& pat
   report.energy_after = relaxed.energy_after;
   report.iterations = relaxed.iterations;
   report.held = relaxed.held;
-  report.stop = relaxed.stop;
+  report.stop = stop_name(relaxed.stop);
   t0 = std::chrono::steady_clock::now();
   const Chart& chart = elastic.chart;
   report.frame_net = patch.bind_net;

@@ -76,6 +76,8 @@ void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3&
     const ElasticResult relaxed = relax_patch(*patch.elastic, points, opt.elastic);
     s.add("relax", ms_since(t0));
     s.add("elastic_iterations", relaxed.iterations);
+    s.add("elastic_solves", relaxed.solves);
+    s.add("elastic_cg_iterations", relaxed.solver_iterations);
     return;
   }
   const std::vector<double> q =
@@ -135,6 +137,16 @@ int stages(int repeat, const SlideOptions& options, const std::string& out_dir,
   for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
   s.add("patch_vertices", static_cast<double>(sliding));
   s.add("mesh_vertices", bind.mesh.vertex_count());
+  double factor_entries = 0, factor_mb = 0;
+  for (const PatchNet& p : setup.patches)
+    if (p.elastic) {
+      factor_entries += static_cast<double>(p.elastic->metric.factor.entries());
+      factor_mb += static_cast<double>(p.elastic->metric.factor.bytes()) / 1e6;
+    }
+  if (options.method == SlideMethod::Elastic) {
+    s.add("elastic_factor_entries", factor_entries);
+    s.add("elastic_factor_mb", factor_mb);
+  }
   fs::create_directories(out_dir);
   for (int r = 0; r < repeat; ++r)
     for (const std::string& path : frames) {
