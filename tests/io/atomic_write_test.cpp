@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "helpers/meshes.h"
+#include "helpers/temp_dir.h"
 
 namespace skinslide {
 
@@ -119,19 +120,19 @@ int end_child_writing(const std::string& path, int signal_number, bool ignore_fi
 TEST(AtomicWrite, TerminationRemovesTheTemporariesInFlight) {
   namespace fs = std::filesystem;
   for (const int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
-    const std::string dir = test::temp_dir("atomic_term" + std::to_string(signal_number));
-    const int status = end_child_writing(dir + "/out.pc2", signal_number, false);
+    const test::TempDir dir("atomic_term" + std::to_string(signal_number));
+    const int status = end_child_writing(dir / "out.pc2", signal_number, false);
     ASSERT_TRUE(WIFSIGNALED(status)) << status;
     EXPECT_EQ(WTERMSIG(status), signal_number);
-    EXPECT_TRUE(fs::is_empty(dir)) << fs::directory_iterator(dir)->path();
+    EXPECT_TRUE(fs::is_empty(dir.path())) << fs::directory_iterator(dir.path())->path();
   }
   // An ignored signal stays ignored; SIGKILL cannot be caught and leaves the temporary.
-  const std::string dir = test::temp_dir("atomic_term_ignored");
-  const int status = end_child_writing(dir + "/out.pc2", SIGTERM, true);
+  const test::TempDir dir("atomic_term_ignored");
+  const int status = end_child_writing(dir / "out.pc2", SIGTERM, true);
   ASSERT_TRUE(WIFSIGNALED(status));
   EXPECT_EQ(WTERMSIG(status), SIGKILL);
-  ASSERT_FALSE(fs::is_empty(dir));
-  const std::string left = fs::directory_iterator(dir)->path().filename().string();
+  ASSERT_FALSE(fs::is_empty(dir.path()));
+  const std::string left = fs::directory_iterator(dir.path())->path().filename().string();
   EXPECT_EQ(left.rfind(".out.pc2.tmp.", 0), 0u) << left;
 }
 
