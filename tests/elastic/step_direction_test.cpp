@@ -140,7 +140,7 @@ TEST(StepDirection, HeldDirectionOnlyLowersTheModel) {
   Positions2 removed = free.d;
   for (size_t i = 0; i < held.size(); ++i)
     if (held[i]) removed[i].setZero();
-  const StepDirection relaxed = held_direction(e->metric, g, held, work);
+  const StepDirection relaxed = held_direction(e->metric, frames, g, held, work);
   ASSERT_TRUE(relaxed.finite);
   const SparseMatrix H = chart_system(*e, T, held);
   const Eigen::VectorXd r = chart_rhs(T, held, g);
