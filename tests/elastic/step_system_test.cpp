@@ -21,7 +21,7 @@ namespace {
 std::shared_ptr<const ElasticSetup> grid_setup() {
   const PolyMesh mesh = test::quad_grid_with_holes(40, 40, {820, 821, 860, 861});
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
-  return setup.patches[0].elastic;
+  return std::get<ElasticMethod>(setup.method).patches[0];
 }
 
 // Jacobians of a frame turned and sheared smoothly over the grid, as a skinned limb's are.
@@ -116,7 +116,7 @@ TEST(StepSystem, SolvesTheChartSystemToItsTolerance) {
 TEST(StepSystem, SmallPatchesAreSolvedExactly) {
   const PolyMesh mesh = test::quad_grid_with_holes(6, 6, {});
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
-  const ElasticSetup& e = *setup.patches[0].elastic;
+  const ElasticSetup& e = *std::get<ElasticMethod>(setup.method).patches[0];
   ASSERT_EQ(e.step_multigrid->hierarchy.levels(), 1)
       << "25 movable vertices: the coarsest level only";
   const std::vector<Mat32> T = smooth_jacobians(e);
