@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "pipeline/run.h"
+#include "skinslide.h"
 
 namespace skinslide::cli {
 

@@ -17,7 +17,7 @@
 #include "core/allocator.h"
 #include "core/error.h"
 #include "core/version.h"
-#include "pipeline/run.h"
+#include "skinslide.h"
 #include "progress.h"
 
 using namespace skinslide;

@@ -138,13 +138,7 @@ std::string frame_json(const ReportFrame& f, FrameSums& sums) {
   std::vector<std::string> patches;
   for (const PatchFrameReport& r : f.patches) {
     Object patch(8);
-    add(patch, report_figures(r.method))
-        .add("moved", number(static_cast<long long>(r.moved)))
-        .add("max_slide", number(r.max_slide))
-        .add("mean_slide", number(r.mean_slide))
-        .add("spread_frame", number(r.spread_frame))
-        .add("spread_slid", number(r.spread_slid));
-    patches.push_back(patch.str());
+    patches.push_back(add(patch, frame_figures(r)).str());
     sums.moved += r.moved;
     sums.max_slide = std::max(sums.max_slide, r.max_slide);
     sums.reports.push_back(r.method);

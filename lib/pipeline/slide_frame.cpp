@@ -34,8 +34,9 @@ double edge_log_spread(const Patch& patch, const Positions3& points) {
 
 // Slides patch p by the method, then gathers what it wrote (mesh ids, surface samples) and the
 // slide figures both methods share.
-PatchFrameReport slide_and_gather(const BindSetup& setup, std::size_t p, const Positions3& frame,
-                                  const FrameExtras& extras, SlidVertices& moved) {
+PatchFrameReport slide_and_gather(const BindSetup& setup, std::size_t p,
+                                  std::span<const Vec3> frame, const FrameExtras& extras,
+                                  SlidVertices& moved) {
   const Patch& patch = setup.patches[p];
   Positions3 points(patch.vertices.size());
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
@@ -79,6 +80,16 @@ PatchFrameReport slide_and_gather(const BindSetup& setup, std::size_t p, const P
 
 }  // namespace
 
+Figures frame_figures(const PatchFrameReport& report) {
+  Figures figures = report_figures(report.method);
+  figures.push_back({"moved", static_cast<long long>(report.moved)});
+  figures.push_back({"max_slide", report.max_slide});
+  figures.push_back({"mean_slide", report.mean_slide});
+  figures.push_back({"spread_frame", report.spread_frame});
+  figures.push_back({"spread_slid", report.spread_slid});
+  return figures;
+}
+
 std::vector<MethodReport> method_reports(const std::vector<PatchFrameReport>& patches) {
   std::vector<MethodReport> reports;
   reports.reserve(patches.size());
@@ -86,7 +97,7 @@ std::vector<MethodReport> method_reports(const std::vector<PatchFrameReport>& pa
   return reports;
 }
 
-FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
+FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
                         const FrameExtras& extras) {
   if (static_cast<Index>(frame.size()) != setup.vertex_count)
     throw Error(ErrorKind::Input, "the frame has " + std::to_string(frame.size()) +

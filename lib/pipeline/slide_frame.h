@@ -2,6 +2,7 @@
 // share: the slid vertices gathered for the transfer, the slide figures.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "core/types.h"
@@ -51,8 +52,12 @@ struct FrameExtras {
 /// Pure: the result depends only on (setup, frame) (the *_seconds timings aside).
 /// \throw Error(Input) when `frame` does not have the bind's vertex count.
 /// \throw Error(Numeric) when a solve fails or a result is not finite.
-FrameResult slide_frame(const BindSetup& setup, const Positions3& frame,
+FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
                         const FrameExtras& extras = {});
+
+/// A patch's figures in a frame, in the report's order: the method's (report_figures), then the
+/// slide's (moved, max_slide, mean_slide, spread_frame, spread_slid).
+Figures frame_figures(const PatchFrameReport& report);
 
 /// The method's reports of a frame's patches, in patch order.
 std::vector<MethodReport> method_reports(const std::vector<PatchFrameReport>& patches);
