@@ -114,13 +114,13 @@ BindSetup set_up(const Bind& bind, const std::vector<std::vector<Index>>& patche
 }
 
 std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const double> frame,
-                                    std::span<double> out) {
+                                    std::span<double> out, bool edge_spread) {
   check_span(frame, setup.vertex_count, "the frame");
   check_span(out, setup.vertex_count, "the output");
   for (size_t k = 0; k < frame.size(); ++k)
     if (!std::isfinite(frame[k]))
       throw Error(ErrorKind::Input, "frame vertex " + std::to_string(k / 3) + " is not finite");
-  FrameResult result = slide_frame(setup, as_points(frame));
+  FrameResult result = slide_frame(setup, as_points(frame), {.edge_spread = edge_spread});
   std::copy(frame.begin(), frame.end(), out.begin());
   for (size_t k = 0; k < result.slid.vertex.size(); ++k) {
     const Vec3& p = result.slid.position[k];
