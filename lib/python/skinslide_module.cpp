@@ -323,6 +323,13 @@ PYBIND11_MODULE(skinslide, m) {
       .def_property_readonly("method", &Slider::method)
       .def_property_readonly("options", &Slider::options)
       .def_property_readonly("patches", &Slider::patches);
+  m.def(
+      "default_options",
+      [](const std::string& method) {
+        return figures_dict(option_figures(method_setup(parse_method(method), 0)));
+      },
+      py::arg("method") = method_name(SlideOptions{}),
+      "The method's options with their defaults, as Slider takes them (and 'method').");
   m.def("read_mesh", &read_mesh, py::arg("path"), py::arg("mesh") = "",
         "Reads an .obj, .gltf or .glb mesh: (positions (V, 3), face_vertices, face_sizes), ids "
         "as skinslide numbers them (glTF: welded vertices, triangles in primitive order).");
