@@ -118,8 +118,8 @@ void add_method(CLI::App& app, CliOptions& o) {
       ->check(CLI::Range(0, 100000))
       ->group(method);
   app.add_option("--tolerance", o.elastic.tolerance,
-                 "Elastic: a round stops once two steps in a row each lower its energy by less "
-                 "than this fraction of its starting energy")
+                 "Elastic: a round stops at the first step that lowers its energy by less than "
+                 "this fraction of its starting energy")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0))
       ->group(method);

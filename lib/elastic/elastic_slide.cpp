@@ -58,7 +58,7 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   report.energy_after = relaxed.energy_after;
   report.iterations = relaxed.iterations;
   report.held = relaxed.held;
-  report.stop = relaxed.stop;
+  report.stop = stop_name(relaxed.stop);
   const Chart& chart = setup.chart;
   slid.net = patch.bind_net;
   slid.frame_in_bind_net = true;

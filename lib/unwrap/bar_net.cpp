@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 
 #include <Eigen/IterativeLinearSolvers>
-#include <cholmod.h>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "solve/cholmod.h"
 
 namespace skinslide {
 namespace {
@@ -113,59 +112,6 @@ SparseMatrix free_matrix(const BarNet& net, const std::vector<Index>& free_id,
   }
   K.resizeNonZeros(kept);
   return K;
-}
-
-// CHOLMOD's workspace with the settings shared by the analysis and every factorisation: one
-// fixed ordering, so the factor never depends on which ordering a heuristic happened to prefer:
-// CHOLMOD's nested dissection (METIS bisections, constrained minimum degree on the parts), whose
-// frame factors took 5-10% less time than METIS's own ordering (40k to 490k vertices) and less
-// than half AMD's; simplicial LDL^T, which beat the supernodal factor, with the reference BLAS and
-// with OpenBLAS; silent.
-class Cholmod {
- public:
-  Cholmod() {
-    cholmod_start(&c_);
-    c_.nmethods = 1;
-    c_.method[0].ordering = CHOLMOD_NESDIS;
-    c_.postorder = 1;
-    c_.supernodal = CHOLMOD_SIMPLICIAL;
-    c_.print = 0;
-  }
-  ~Cholmod() { cholmod_finish(&c_); }
-  Cholmod(const Cholmod&) = delete;
-  Cholmod& operator=(const Cholmod&) = delete;
-  cholmod_common* operator->() { return &c_; }
-  cholmod_common* get() { return &c_; }
-
- private:
-  cholmod_common c_;
-};
-
-// A view of K (both triangles stored; CHOLMOD reads the lower one). No copy.
-cholmod_sparse cholmod_view(const SparseMatrix& K) {
-  cholmod_sparse A{};
-  A.nrow = A.ncol = static_cast<size_t>(K.rows());
-  A.nzmax = static_cast<size_t>(K.nonZeros());
-  A.p = const_cast<Index*>(K.outerIndexPtr());
-  A.i = const_cast<Index*>(K.innerIndexPtr());
-  A.x = const_cast<double*>(K.valuePtr());
-  A.stype = -1;
-  A.itype = CHOLMOD_INT;
-  A.xtype = CHOLMOD_REAL;
-  A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = 1;
-  A.packed = 1;
-  return A;
-}
-
-// The symbolic analysis of A with the nested-dissection ordering. METIS, which finds its
-// separators, keeps state between calls outside the call (its random number generator), so two
-// patches ordered at once by two threads get orders, and so factors, that depend on the timing:
-// one ordering at a time keeps every run identical.
-cholmod_factor* analyze_with_nested_dissection(cholmod_sparse& A, Cholmod& c) {
-  static std::mutex one_at_a_time;
-  const std::lock_guard<std::mutex> lock(one_at_a_time);
-  return cholmod_analyze(&A, c.get());
 }
 
 // Factorises K on a copy of `symbolic` (the analysis of K's pattern) and solves K x = b.

@@ -78,6 +78,8 @@ void time_patch(const BindSetup& setup, size_t index, const Positions3& frame, S
     const ElasticResult relaxed = relax_patch(*elastic->patches[index], points, elastic->options);
     s.add("relax", ms_since(t0));
     s.add("elastic_iterations", relaxed.iterations);
+    s.add("elastic_solves", relaxed.solves);
+    s.add("elastic_cg_iterations", relaxed.solver_iterations);
     return;
   }
   const PaperOptions& opt = std::get<PaperMethod>(setup.method).options;
@@ -139,6 +141,16 @@ int stages(int repeat, const SlideOptions& options, const std::string& out_dir,
   for (const Patch& p : setup.patches) sliding += p.free_vertices.size();
   s.add("patch_vertices", static_cast<double>(sliding));
   s.add("mesh_vertices", bind.mesh.vertex_count());
+  if (const auto* elastic = std::get_if<ElasticMethod>(&setup.method)) {
+    double factor_entries = 0, factor_mb = 0;
+    for (const auto& e : elastic->patches)
+      if (e) {
+        factor_entries += static_cast<double>(e->metric.factor.entries());
+        factor_mb += static_cast<double>(e->metric.factor.bytes()) / 1e6;
+      }
+    s.add("elastic_factor_entries", factor_entries);
+    s.add("elastic_factor_mb", factor_mb);
+  }
   fs::create_directories(out_dir);
   for (int r = 0; r < repeat; ++r)
     for (const std::string& path : frames) {

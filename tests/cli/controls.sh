@@ -41,7 +41,7 @@ import json, sys
 r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
                    "totals", "timings"], list(r)
-assert r["options"] == {"method": "elastic", "rotation_fits": 3, "max_iterations": 100, "tolerance": 1e-4}, r["options"]
+assert r["options"] == {"method": "elastic", "rotation_fits": 3, "max_iterations": 100, "tolerance": 3e-4}, r["options"]
 assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving", "loops",
                                  "outer_loop_start", "outer_loop_chosen", "skipped",
                                  "chart_weights"], list(r["patches"][0])
