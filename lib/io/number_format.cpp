@@ -1,6 +1,7 @@
 #include "io/number_format.h"
 
 #include <charconv>
+#include <cstdio>
 
 namespace skinslide {
 
@@ -12,6 +13,12 @@ DoubleText double_text(double x) {
 }
 
 std::string format_double(double x) { return std::string(double_text(x).view()); }
+
+std::string log_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
 
 std::optional<double> parse_double(std::string_view text) {
   // from_chars rejects a leading '+', which some exporters write.

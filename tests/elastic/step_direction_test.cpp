@@ -22,7 +22,7 @@ namespace {
 std::shared_ptr<const ElasticSetup> grid_setup() {
   const PolyMesh mesh = test::quad_grid_with_holes(40, 40, {820, 821, 860, 861});
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
-  return setup.patches[0].elastic;
+  return std::get<ElasticMethod>(setup.method).patches[0];
 }
 
 // Jacobians of a frame turned and sheared smoothly over the grid, as a skinned limb's are.
