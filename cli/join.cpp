@@ -8,8 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/error.h"
-#include "io/cache_chunks.h"
+#include "skinslide.h"
 
 namespace skinslide {
 

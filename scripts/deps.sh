@@ -16,6 +16,7 @@ else
     libopenmesh-dev libeigen3-dev libcli11-dev libtinygltf-dev libopenexr-dev openexr
     libstb-dev libgtest-dev libsuitesparse-dev
     python3-numpy python3-scipy
+    pybind11-dev python3-dev python3-pytest
   )
   # The Khronos glTF validator (scripts/gltf_validate.sh) runs on node; the tests skip it, saying
   # so, only where npm cannot reach its registry.

@@ -88,9 +88,9 @@ class Relaxation {
 
   // The direction with the vertices in held_ held (none when empty), as a candidate.
   bool add_candidate() {
-    StepDirection direction = held_.empty()
-                                  ? step_direction(setup_.metric, frames_, g_movable_, held_, work_)
-                                  : held_direction(setup_.metric, g_movable_, held_, work_);
+    StepDirection direction =
+        held_.empty() ? step_direction(setup_.metric, frames_, g_movable_, held_, work_)
+                      : held_direction(setup_.metric, frames_, g_movable_, held_, work_);
     result_.solver_iterations += direction.iterations;
     ++result_.solves;
     if (!direction.finite) {

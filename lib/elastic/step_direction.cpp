@@ -39,13 +39,18 @@ double dot(const Positions2& a, const Positions2& b) {
   return total;
 }
 
-// (Q^T (K x I3) Q + shift I) p: the step system in tangent coordinates (a held vertex's frame
-// is zero: its rows and columns are the shift's).
+// (Q^T (K x I3) Q + shift I) p over the vertices that do not stay (p is zero on the others,
+// and so is the product).
 void apply_system(const ElasticMetric& metric, const std::vector<TangentFrame>& frame,
-                  const Positions2& p, Positions3& motion, Positions2& out) {
+                  const std::vector<char>& stays, const Positions2& p, Positions3& motion,
+                  Positions2& out) {
   const Index m = metric.size();
-  for (Index j = 0; j < m; ++j) motion[j] = frame[j].Q * p[j];
+  for (Index j = 0; j < m; ++j) motion[j] = stays[j] ? Vec3::Zero() : Vec3(frame[j].Q * p[j]);
   for (Index i = 0; i < m; ++i) {
+    if (stays[i]) {
+      out[i].setZero();
+      continue;
+    }
     Vec3 sum = Vec3::Zero();
     for (Index e = metric.start[i]; e < metric.start[i + 1]; ++e)
       sum += metric.value[e] * motion[metric.column[e]];
@@ -126,9 +131,11 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
   const Index m = metric.size();
   StepDirection out;
   out.d.assign(m, Vec2::Zero());
-  const auto is_held = [&](Index i) { return (!held.empty() && held[i]) || frames[i].crushed; };
+  std::vector<char>& stays = work.stays;
+  stays.resize(m);
+  for (Index i = 0; i < m; ++i) stays[i] = (!held.empty() && held[i]) || frames[i].crushed;
+  const auto is_held = [&](Index i) { return stays[i] != 0; };
   Positions2 &r = work.r, &x = work.x, &z = work.z, &p = work.p, &Ap = work.Ap;
-  work.frame.resize(m);
   r.resize(m);
   x.assign(m, Vec2::Zero());
   z.resize(m);
@@ -136,8 +143,7 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
   Ap.resize(m);
   work.motion.resize(m);
   for (Index i = 0; i < m; ++i) {
-    work.frame[i] = is_held(i) ? TangentFrame{} : frames[i];
-    r[i] = -(work.frame[i].Q.transpose() * gradient[i]);
+    r[i] = is_held(i) ? Vec2::Zero() : Vec2(-(frames[i].Q.transpose() * gradient[i]));
   }
   const double r0 = std::sqrt(dot(r, r));
   if (!(r0 > 0)) {
@@ -161,7 +167,7 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
       for (Index i = 0; i < m; ++i) p[i] = z[i] + beta * p[i];
     }
     rz = rz_next;
-    apply_system(metric, work.frame, p, work.motion, Ap);
+    apply_system(metric, frames, stays, p, work.motion, Ap);
     const double pAp = dot(p, Ap);
     if (!(pAp > 0)) break;
     const double a = rz / pAp;
@@ -172,15 +178,16 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
     ++out.iterations;
   }
   for (Index i = 0; i < m; ++i) {
-    out.d[i] = is_held(i) ? Vec2::Zero() : Vec2(work.frame[i].S_inverse * x[i]);
+    out.d[i] = is_held(i) ? Vec2::Zero() : Vec2(frames[i].S_inverse * x[i]);
     if (!out.d[i].allFinite()) out.finite = false;
   }
   if (!out.finite) out.d.assign(m, Vec2::Zero());
   return out;
 }
 
-StepDirection held_direction(const ElasticMetric& metric, const Positions3& gradient,
-                             const std::vector<char>& held, DirectionWork& work) {
+StepDirection held_direction(const ElasticMetric& metric, const std::vector<TangentFrame>& frames,
+                             const Positions3& gradient, const std::vector<char>& held,
+                             DirectionWork& work) {
   const Index m = metric.size();
   StepDirection out;
   out.d.assign(m, Vec2::Zero());
@@ -188,7 +195,7 @@ StepDirection held_direction(const ElasticMetric& metric, const Positions3& grad
   // The vertices within kHeldRings of a held one, free, ascending: the ones relaxed.
   std::vector<int> ring(m, -1);
   std::vector<Index> frontier;
-  const auto is_held = [&](Index i) { return held[i] || work.frame[i].crushed; };
+  const auto is_held = [&](Index i) { return held[i] || frames[i].crushed; };
   for (Index i = 0; i < m; ++i)
     if (is_held(i)) {
       ring[i] = 0;
@@ -211,7 +218,7 @@ StepDirection held_direction(const ElasticMetric& metric, const Positions3& grad
   // Gauss-Seidel on (Q^T (K x I3) Q + shift I) x = -Q^T g over the region, forward then
   // backward: coordinate descent on the step's model, so the model only falls.
   const auto relax_vertex = [&](Index i) {
-    const TangentFrame& fi = work.frame[i];
+    const TangentFrame& fi = frames[i];
     Vec3 sum = Vec3::Zero();
     double diagonal = 0;
     for (Index e = metric.start[i]; e < metric.start[i + 1]; ++e) {
@@ -219,7 +226,7 @@ StepDirection held_direction(const ElasticMetric& metric, const Positions3& grad
       if (j == i)
         diagonal = metric.value[e];
       else if (!is_held(j))
-        sum += metric.value[e] * (work.frame[j].Q * x[j]);
+        sum += metric.value[e] * (frames[j].Q * x[j]);
     }
     const Vec2 rhs = -(fi.Q.transpose() * (gradient[i] + sum));
     const Eigen::Matrix2d A =
@@ -231,7 +238,7 @@ StepDirection held_direction(const ElasticMetric& metric, const Positions3& grad
     for (auto it = region.rbegin(); it != region.rend(); ++it) relax_vertex(*it);
   }
   for (Index i = 0; i < m; ++i) {
-    out.d[i] = is_held(i) ? Vec2::Zero() : Vec2(work.frame[i].S_inverse * x[i]);
+    out.d[i] = is_held(i) ? Vec2::Zero() : Vec2(frames[i].S_inverse * x[i]);
     if (!out.d[i].allFinite()) out.finite = false;
   }
   if (!out.finite) out.d.assign(m, Vec2::Zero());

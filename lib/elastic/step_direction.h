@@ -61,7 +61,7 @@ std::vector<TangentFrame> tangent_frames(const std::vector<Mat32>& T);
 
 /// Work arrays of step_direction, kept from step to step (one per frame in flight).
 struct DirectionWork {
-  std::vector<TangentFrame> frame;
+  std::vector<char> stays;  ///< held or crushed
   Positions2 r, x, z, p, Ap, permuted;
   Positions3 motion;
 };
@@ -85,7 +85,8 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
 /// steps removed, then the system relaxed around them by symmetric Gauss-Seidel sweeps over the
 /// free vertices within a few rings of a held one. A held vertex changes the step mostly near
 /// itself, so this costs a small share of a solve and keeps the rest of the patch's step.
-StepDirection held_direction(const ElasticMetric& metric, const Positions3& gradient,
-                             const std::vector<char>& held, DirectionWork& work);
+StepDirection held_direction(const ElasticMetric& metric, const std::vector<TangentFrame>& frames,
+                             const Positions3& gradient, const std::vector<char>& held,
+                             DirectionWork& work);
 
 }  // namespace skinslide

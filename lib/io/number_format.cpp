@@ -1,6 +1,7 @@
 #include "io/number_format.h"
 
 #include <charconv>
+#include <cstdio>
 
 namespace skinslide {
 
@@ -17,6 +18,12 @@ std::string format_float(float x) {
   char chars[32];
   const auto r = std::to_chars(chars, chars + sizeof chars, x);
   return std::string(chars, r.ptr);
+}
+
+std::string log_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
 }
 
 std::optional<double> parse_double(std::string_view text) {

@@ -24,6 +24,9 @@ struct DoubleText {
 };
 DoubleText double_text(double x);
 
+/// Four significant digits ("%.4g"), for log lines: "0.1235", "1.5e-05".
+std::string log_number(double x);
+
 /// Parses the whole of `text` as a double ("1", "-2.5e3", "+1"); nullopt when it is not one.
 /// "nan" and "inf" parse (the caller decides whether non-finite values are allowed).
 std::optional<double> parse_double(std::string_view text);

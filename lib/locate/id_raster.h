@@ -9,6 +9,9 @@
 
 namespace skinslide {
 
+/// The default side of an ID image in pixels (--lookup-size): --locate image and --dump.
+constexpr int kLookupSize = 1024;
+
 /// A square image over the unit square [0,1]^2. Pixel (i, j) covers
 /// [i/size, (i+1)/size) x [j/size, (j+1)/size) and is stored at ids[j*size + i] (row 0 = v = 0,
 /// the bottom of the net). Value 0 = no triangle, t+1 = triangle t of the net.

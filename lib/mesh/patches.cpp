@@ -39,31 +39,46 @@ struct Selected {
   std::vector<std::tuple<Index, Index, bool>> vertex_roles;
 };
 
-Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, Index selection,
-                         const FaceNamer& name_face) {
-  const Index nf = static_cast<Index>(faces.size());
-  std::vector<Index> corner_start(nf + 1, 0);
+// One selection's faces, their corners (CSR by position in the selection) and half-edges.
+struct SelectionEdges {
+  const PolyMesh& mesh;
+  const std::vector<Index>& faces;
+  const FaceNamer& name_face;
+  std::vector<Index> corner_start;  ///< #faces + 1
+  Index max_vertex = -1;
+  std::vector<HalfEdge> he;  ///< sorted by (lo, hi, face, corner)
+
+  Index face_count() const { return static_cast<Index>(faces.size()); }
+  Index corners(Index i) const { return corner_start[i + 1] - corner_start[i]; }
+  Index corner(Index face, Index slot) const { return corner_start[face] + slot % corners(face); }
+};
+
+// The faces' corners, each face checked for a repeated vertex.
+void count_corners(SelectionEdges& sel) {
+  const Index nf = sel.face_count();
+  sel.corner_start.assign(nf + 1, 0);
   for (Index i = 0; i < nf; ++i) {
-    const Index f = faces[i];
-    const Index* fv = mesh.face_begin(f);
-    const Index n = mesh.face_size(f);
+    const Index f = sel.faces[i];
+    const Index* fv = sel.mesh.face_begin(f);
+    const Index n = sel.mesh.face_size(f);
     for (Index a = 0; a < n; ++a)
       for (Index b = a + 1; b < n; ++b)
         if (fv[a] == fv[b])
-          throw_patch(name_face(f) + " uses vertex " + std::to_string(fv[a]) +
+          throw_patch(sel.name_face(f) + " uses vertex " + std::to_string(fv[a]) +
                       " twice (degenerate face)");
-    corner_start[i + 1] = corner_start[i] + n;
+    sel.corner_start[i + 1] = sel.corner_start[i] + n;
+    for (Index k = 0; k < n; ++k) sel.max_vertex = std::max(sel.max_vertex, fv[k]);
   }
-  // Half-edges sorted by (lo, hi, face, corner): a counting sort by lo, then each vertex's few.
-  Index max_vertex = -1;
-  for (Index i = 0; i < nf; ++i)
-    for (Index k = 0; k < corner_start[i + 1] - corner_start[i]; ++k)
-      max_vertex = std::max(max_vertex, mesh.face_begin(faces[i])[k]);
-  std::vector<Index> lo_start(static_cast<size_t>(max_vertex) + 2, 0);
+}
+
+// Half-edges sorted by (lo, hi, face, corner): a counting sort by lo, then each vertex's few.
+void sort_half_edges(SelectionEdges& sel) {
+  const Index nf = sel.face_count();
+  std::vector<Index> lo_start(static_cast<size_t>(sel.max_vertex) + 2, 0);
   auto for_each_half_edge = [&](auto&& visit) {
     for (Index i = 0; i < nf; ++i) {
-      const Index* fv = mesh.face_begin(faces[i]);
-      const Index n = corner_start[i + 1] - corner_start[i];
+      const Index* fv = sel.mesh.face_begin(sel.faces[i]);
+      const Index n = sel.corners(i);
       for (Index k = 0; k < n; ++k) {
         const Index u = fv[k], v = fv[(k + 1) % n];
         visit(HalfEdge{std::min(u, v), std::max(u, v), i, k, u, v});
@@ -72,98 +87,80 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
   };
   for_each_half_edge([&](const HalfEdge& h) { ++lo_start[h.lo + 1]; });
   for (size_t v = 0; v + 1 < lo_start.size(); ++v) lo_start[v + 1] += lo_start[v];
-  std::vector<HalfEdge> he(corner_start[nf]);
-  {
-    std::vector<Index> next(lo_start.begin(), lo_start.end() - 1);
-    for_each_half_edge([&](const HalfEdge& h) { he[next[h.lo]++] = h; });
-  }
-  for (Index v = 0; v <= max_vertex; ++v)
-    std::sort(he.begin() + lo_start[v], he.begin() + lo_start[v + 1],
+  sel.he.resize(sel.corner_start[nf]);
+  std::vector<Index> next(lo_start.begin(), lo_start.end() - 1);
+  for_each_half_edge([&](const HalfEdge& h) { sel.he[next[h.lo]++] = h; });
+  for (Index v = 0; v <= sel.max_vertex; ++v)
+    std::sort(sel.he.begin() + lo_start[v], sel.he.begin() + lo_start[v + 1],
               [](const HalfEdge& a, const HalfEdge& b) {
                 return std::tie(a.hi, a.face, a.corner) < std::tie(b.hi, b.face, b.corner);
               });
+}
 
-  UnionFind face_sets(nf);
-  UnionFind corner_sets(corner_start[nf]);
+// Across every inner edge: the two faces join one component and their corners at each end join
+// one fan. Returns which half-edges are on the boundary (used by one selected face).
+std::vector<char> join_across_edges(const SelectionEdges& sel, UnionFind& face_sets,
+                                    UnionFind& corner_sets) {
+  const std::vector<HalfEdge>& he = sel.he;
   std::vector<char> boundary_edge(he.size(), 0);
-  auto corner = [&](Index face, Index slot) {
-    const Index n = corner_start[face + 1] - corner_start[face];
-    return corner_start[face] + slot % n;
-  };
   for (size_t s = 0; s < he.size();) {
     size_t e = s;
     while (e < he.size() && he[e].lo == he[s].lo && he[e].hi == he[s].hi) ++e;
     auto edge = [&] {
       return "edge (" + std::to_string(he[s].lo) + ", " + std::to_string(he[s].hi) + ")";
     };
+    auto name = [&](size_t k) { return sel.name_face(sel.faces[he[k].face]); };
     if (e - s > 2)
       throw_patch(edge() + " is shared by " + std::to_string(e - s) + " selected faces: " +
-                  name_face(faces[he[s].face]) + ", " + name_face(faces[he[s + 1].face]) + ", " +
-                  name_face(faces[he[s + 2].face]) + " (non-manifold edge)");
+                  name(s) + ", " + name(s + 1) + ", " + name(s + 2) + " (non-manifold edge)");
     if (e - s == 1) {
       boundary_edge[s] = 1;
     } else {
       const HalfEdge& a = he[s];
       const HalfEdge& b = he[s + 1];
       if (a.from == b.from)
-        throw_patch(name_face(faces[a.face]) + " and " + name_face(faces[b.face]) + " traverse " +
-                    edge() +
+        throw_patch(name(s) + " and " + name(s + 1) + " traverse " + edge() +
                     " in the same direction: the patch is not consistently oriented "
                     "(a flipped face, or a non-orientable patch such as a Moebius strip)");
       face_sets.join(a.face, b.face);
       // a: from->to at slots (corner, corner+1); b runs to->from at (corner, corner+1).
-      corner_sets.join(corner(a.face, a.corner), corner(b.face, b.corner + 1));
-      corner_sets.join(corner(a.face, a.corner + 1), corner(b.face, b.corner));
+      corner_sets.join(sel.corner(a.face, a.corner), sel.corner(b.face, b.corner + 1));
+      corner_sets.join(sel.corner(a.face, a.corner + 1), sel.corner(b.face, b.corner));
     }
     s = e;
   }
+  return boundary_edge;
+}
 
-  // Components, numbered by first face.
-  std::vector<Index> comp_of_face(nf, -1);
-  Index ncomp = 0;
-  std::vector<Index> comp_of_root(nf, -1);
-  for (Index i = 0; i < nf; ++i) {
-    Index& c = comp_of_root[face_sets.find(i)];
-    if (c < 0) c = ncomp++;
-    comp_of_face[i] = c;
-  }
-
-  Selected out;
-  out.components.resize(ncomp);
-  for (Index i = 0; i < nf; ++i) out.components[comp_of_face[i]].faces.push_back(faces[i]);
-  std::vector<std::pair<Index, Index>> boundary_vertices;  // (comp, vertex)
-  for (size_t k = 0; k < he.size(); ++k) {
-    if (!boundary_edge[k]) continue;
-    boundary_vertices.emplace_back(comp_of_face[he[k].face], he[k].lo);
-    boundary_vertices.emplace_back(comp_of_face[he[k].face], he[k].hi);
-  }
-  std::sort(boundary_vertices.begin(), boundary_vertices.end());
-  boundary_vertices.erase(std::unique(boundary_vertices.begin(), boundary_vertices.end()),
-                          boundary_vertices.end());
-  // Fans: every (component, vertex) must have one corner set. The corners are bucketed by vertex
-  // (a counting sort), then each vertex's few corners sorted by (component, set, face).
+// Fans: every (component, vertex) must have one corner set. The corners are bucketed by vertex
+// (a counting sort), then each vertex's few corners sorted by (component, set, face). Fills the
+// components' vertices and the vertices' roles.
+void collect_vertices(const SelectionEdges& sel, const std::vector<Index>& comp_of_face,
+                      UnionFind& corner_sets,
+                      const std::vector<std::pair<Index, Index>>& boundary_vertices,
+                      Selected& out) {
   struct Fan {
     Index comp, root, face;
     bool operator<(const Fan& o) const {
       return std::tie(comp, root, face) < std::tie(o.comp, o.root, o.face);
     }
   };
-  std::vector<Index> fan_start(static_cast<size_t>(max_vertex) + 2, 0);
+  const Index nf = sel.face_count();
+  std::vector<Index> fan_start(static_cast<size_t>(sel.max_vertex) + 2, 0);
   for (Index i = 0; i < nf; ++i) {
-    const Index* fv = mesh.face_begin(faces[i]);
-    for (Index k = 0; k < corner_start[i + 1] - corner_start[i]; ++k) ++fan_start[fv[k] + 1];
+    const Index* fv = sel.mesh.face_begin(sel.faces[i]);
+    for (Index k = 0; k < sel.corners(i); ++k) ++fan_start[fv[k] + 1];
   }
   for (size_t v = 0; v + 1 < fan_start.size(); ++v) fan_start[v + 1] += fan_start[v];
-  std::vector<Fan> fans(corner_start[nf]);
-  {
-    std::vector<Index> next(fan_start.begin(), fan_start.end() - 1);
-    for (Index i = 0; i < nf; ++i) {
-      const Index* fv = mesh.face_begin(faces[i]);
-      for (Index k = 0; k < corner_start[i + 1] - corner_start[i]; ++k)
-        fans[next[fv[k]]++] = {comp_of_face[i], corner_sets.find(corner_start[i] + k), faces[i]};
-    }
+  std::vector<Fan> fans(sel.corner_start[nf]);
+  std::vector<Index> next(fan_start.begin(), fan_start.end() - 1);
+  for (Index i = 0; i < nf; ++i) {
+    const Index* fv = sel.mesh.face_begin(sel.faces[i]);
+    for (Index k = 0; k < sel.corners(i); ++k)
+      fans[next[fv[k]]++] = {comp_of_face[i], corner_sets.find(sel.corner_start[i] + k),
+                             sel.faces[i]};
   }
-  for (Index v = 0; v <= max_vertex; ++v) {
+  for (Index v = 0; v <= sel.max_vertex; ++v) {
     const auto begin = fans.begin() + fan_start[v], end = fans.begin() + fan_start[v + 1];
     std::sort(begin, end);
     for (auto s = begin; s != end;) {
@@ -179,7 +176,7 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
       }
       if (nroots > 1)
         throw_patch("vertex " + std::to_string(v) +
-                    " is non-manifold: the selected faces around it (" + name_face(s->face) +
+                    " is non-manifold: the selected faces around it (" + sel.name_face(s->face) +
                     ", ...) form " + std::to_string(nroots) +
                     " separate fans (a bow-tie); select the faces between them or split the patch");
       out.components[s->comp].vertices.push_back(v);
@@ -189,6 +186,41 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
       s = e;
     }
   }
+}
+
+Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, Index selection,
+                         const FaceNamer& name_face) {
+  SelectionEdges sel{mesh, faces, name_face, {}, -1, {}};
+  count_corners(sel);
+  sort_half_edges(sel);
+  const Index nf = sel.face_count();
+  UnionFind face_sets(nf);
+  UnionFind corner_sets(sel.corner_start[nf]);
+  const std::vector<char> boundary_edge = join_across_edges(sel, face_sets, corner_sets);
+
+  // Components, numbered by first face.
+  std::vector<Index> comp_of_face(nf, -1);
+  Index ncomp = 0;
+  std::vector<Index> comp_of_root(nf, -1);
+  for (Index i = 0; i < nf; ++i) {
+    Index& c = comp_of_root[face_sets.find(i)];
+    if (c < 0) c = ncomp++;
+    comp_of_face[i] = c;
+  }
+
+  Selected out;
+  out.components.resize(ncomp);
+  for (Index i = 0; i < nf; ++i) out.components[comp_of_face[i]].faces.push_back(faces[i]);
+  std::vector<std::pair<Index, Index>> boundary_vertices;  // (comp, vertex)
+  for (size_t k = 0; k < sel.he.size(); ++k) {
+    if (!boundary_edge[k]) continue;
+    boundary_vertices.emplace_back(comp_of_face[sel.he[k].face], sel.he[k].lo);
+    boundary_vertices.emplace_back(comp_of_face[sel.he[k].face], sel.he[k].hi);
+  }
+  std::sort(boundary_vertices.begin(), boundary_vertices.end());
+  boundary_vertices.erase(std::unique(boundary_vertices.begin(), boundary_vertices.end()),
+                          boundary_vertices.end());
+  collect_vertices(sel, comp_of_face, corner_sets, boundary_vertices, out);
   for (Index c = 0; c < ncomp; ++c) {
     PatchComponent& comp = out.components[c];
     comp.selection = selection;

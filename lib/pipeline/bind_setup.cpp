@@ -4,15 +4,11 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
-#include <future>
 #include <string>
 #include <thread>
 
 #include "core/check.h"
 #include "core/error.h"
-#include "pipeline/slide_frame.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/force_density.h"
 #include "unwrap/square_boundary.h"
 
 namespace skinslide {
@@ -31,13 +27,6 @@ double diagonal(const Positions3& points) {
     hi = hi.cwiseMax(p);
   }
   return (hi - lo).norm();
-}
-
-Index bar_index(const std::vector<std::array<Index, 2>>& bars, Index a, Index b) {
-  const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
-  const auto it = std::lower_bound(bars.begin(), bars.end(), key);
-  SKINSLIDE_CHECK(it != bars.end() && *it == key, "a loop edge is a bar");
-  return static_cast<Index>(it - bars.begin());
 }
 
 // What the controls ask of one patch; mesh vertex ids.
@@ -143,48 +132,6 @@ std::vector<PatchChoice> patch_choices(const std::vector<PatchComponent>& comps,
   return choices;
 }
 
-// The bind net: the outer loop on the square, everything else in equilibrium. With Holes::Fill
-// each hole gets a virtual free node joined to its loop vertices, with the loop's mean q, so the
-// hole keeps its size instead of collapsing towards the free loop. Solved as the frames will be:
-// by multigrid, or by Cholesky, whose ordering then serves the frames too.
-Positions2 bind_net(const PatchNet& patch, const std::vector<double>& q, const Positions2& outer_2d,
-                    const SlideOptions& options, FrameNetMethod method,
-                    std::vector<Index>& node_order) {
-  const Index n = static_cast<Index>(patch.vertices.size());
-  BarNet net;
-  net.node_count = n;
-  net.bars = patch.bars;
-  std::vector<double> q_all = q;
-  if (options.holes == Holes::Fill) {
-    for (size_t l = 0; l < patch.loops.size(); ++l) {
-      if (static_cast<Index>(l) == patch.outer_loop) continue;
-      const auto& loop = patch.loops[l];
-      double q_mean = 0;
-      for (size_t k = 0; k < loop.size(); ++k)
-        q_mean += q[bar_index(patch.bars, loop[k], loop[(k + 1) % loop.size()])];
-      q_mean /= static_cast<double>(loop.size());
-      const Index centre = net.node_count++;
-      for (Index v : loop) {
-        net.bars.push_back({v, centre});
-        q_all.push_back(q_mean);
-      }
-    }
-  }
-  net.fixed.assign(net.node_count, 0);
-  Positions2 start(net.node_count, Vec2::Zero());
-  const auto& outer = patch.loops[patch.outer_loop];
-  for (size_t k = 0; k < outer.size(); ++k) {
-    net.fixed[outer[k]] = 1;
-    start[outer[k]] = outer_2d[k];
-  }
-  Positions2 solved = method == FrameNetMethod::Multigrid
-                          ? solve_bar_net_multigrid(net, q_all, start, options.cg_tolerance,
-                                                    options.cg_max_iterations)
-                          : solve_bar_net(net, q_all, start, &node_order);
-  solved.resize(n);
-  return solved;
-}
-
 // Mesh vertex -> patch vertex, for one patch at a time: a dense table (one lookup per face corner
 // is the hot path of the set-up) whose entries are reset when the patch is done.
 class LocalIds {
@@ -212,10 +159,11 @@ class LocalIds {
   std::vector<Index> local_;
 };
 
-PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const SlideOptions& options,
-                   const PatchChoice& choice, const std::vector<char>& pinned,
-                   const std::vector<double>& weight, LocalIds& local_ids, bool spare_thread) {
-  PatchNet patch;
+// Patch `index` of the bind: its shared part, then the method's set-up of it (in `method`).
+Patch patch_net(const PolyMesh& bind, const PatchComponent& comp, std::size_t index,
+                MethodSetup& method, const PatchChoice& choice, const std::vector<char>& pinned,
+                const std::vector<double>& weight, LocalIds& local_ids, bool spare_thread) {
+  Patch patch;
   patch.selection = comp.selection;
   patch.faces = comp.faces;
   patch.vertices = comp.vertices;
@@ -258,89 +206,19 @@ PatchNet patch_net(const PolyMesh& bind, const PatchComponent& comp, const Slide
     patch.outer_loop = loop_of(comp, choice.outer_vertex);
     patch.outer_loop_chosen = true;
   }
-  std::vector<char> fixed = on_loop;  // in the frame nets: loops and pins
   for (Index v = 0; v < static_cast<Index>(patch.vertices.size()); ++v) {
     if (on_loop[v]) continue;
     if (!pinned.empty() && pinned[patch.vertices[v]]) {
       patch.pinned.push_back(v);
-      fixed[v] = 1;
     } else {
       patch.free_vertices.push_back(v);
     }
   }
   patch.skipped = patch.free_vertices.empty();
   if (patch.skipped) return patch;  // nothing to move: no unwrap needed, whatever the loops
-  if (options.method == SlideMethod::Elastic) {
-    // A vertex of weight 0 is held where the frame puts it, and the skin around it slides.
-    std::vector<Index> movable;
-    for (Index v : patch.free_vertices)
-      if (weight.empty() || weight[patch.vertices[v]] > 0) movable.push_back(v);
-    patch.bind_lengths = bar_lengths(points, patch.bars);
-    patch.elastic = std::make_shared<const ElasticSetup>(
-        elastic_setup(points, patch.triangles, patch.loops, patch.outer_loop, movable));
-    patch.bind_net.assign(
-        patch.elastic->chart.uv.begin(),
-        patch.elastic->chart.uv.begin() + static_cast<std::ptrdiff_t>(patch.vertices.size()));
-    patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
-    return patch;
-  }
-
-  // The frame nets' triangle neighbours, for the walks that locate points in them (the elastic
-  // method walks in its chart, which has neighbours of its own).
-  patch.topology = triangle_topology(patch.triangles, static_cast<Index>(patch.vertices.size()));
-  const auto& outer = patch.loops[patch.outer_loop];
-  SquareBoundary square;
-  if (choice.has_corners) {
-    std::array<Index, 4> at{};
-    for (int j = 0; j < 4; ++j)
-      at[j] = static_cast<Index>(std::find(outer.begin(), outer.end(), local(choice.corners[j])) -
-                                 outer.begin());
-    std::array<Index, 4> walk{};  // the corners as the loop meets them, from the first one named
-    const Index n = static_cast<Index>(outer.size());
-    std::vector<std::pair<Index, Index>> by_offset;
-    for (int j = 0; j < 4; ++j) by_offset.push_back({(at[j] - at[0] + n) % n, choice.corners[j]});
-    std::sort(by_offset.begin(), by_offset.end());
-    for (int j = 0; j < 4; ++j) walk[j] = by_offset[j].second;
-    if (walk != choice.corners)
-      throw Error(ErrorKind::Usage, choice.corners_source +
-                                        ": the corners are not in the loop's walking order; "
-                                        "walking from " +
-                                        std::to_string(choice.corners[0]) +
-                                        " the loop meets them as " + corners_text(walk).substr(10));
-    square = square_positions(gather(points, outer), at);
-    patch.corners_chosen = true;
-  } else {
-    square = square_positions(gather(points, outer));
-  }
-  for (int j = 0; j < 4; ++j) patch.corners[j] = outer[square.corners[j]];
-  patch.bind_lengths = bar_lengths(points, patch.bars);
-  const std::vector<double> q =
-      force_densities(patch.bind_lengths, options.density, options.q_floor);
-  const FrameNetMethod method = frame_net_method(
-      options.frame_solver, static_cast<std::ptrdiff_t>(patch.free_vertices.size()));
-  // Frame nets: the same bars, every loop vertex fixed at its bind-net position.
-  BarNet frame;
-  frame.node_count = static_cast<Index>(patch.vertices.size());
-  frame.bars = patch.bars;
-  frame.fixed = std::move(fixed);
-  // The frame nets' solver depends on their bars and fixed nodes, not on the bind net it starts
-  // from: with a spare thread, a multigrid one (its free system, slots and levels) is built
-  // while the bind net is solved, then warm-started at it (1M vertices: about 0.5 s of work).
-  // The same solver either way.
-  std::future<FrameNetSolver> prepared;
-  if (spare_thread && method == FrameNetMethod::Multigrid)
-    prepared = std::async(std::launch::async, [&frame] {
-      const Index nodes = frame.node_count;
-      return FrameNetSolver(std::move(frame), Positions2(nodes, Vec2::Zero()),
-                            FrameNetMethod::Multigrid);
-    });
-  // The frame nets' free nodes are among the bind net's: its fill-reducing order serves them too.
-  std::vector<Index> node_order;
-  patch.bind_net = bind_net(patch, q, square.positions, options, method, node_order);
-  patch.bind_net_flips = flipped_triangles(patch.bind_net, patch.triangles);
-  patch.solver = std::make_shared<const FrameNetSolver>(
-      prepared.valid() ? prepared.get().starting_at(patch.bind_net)
-                       : FrameNetSolver(std::move(frame), patch.bind_net, method, node_order));
+  CornerChoice corners;
+  if (choice.has_corners) corners = {true, choice.corners, choice.corners_source};
+  set_up_patch(method, index, patch, points, weight, corners, spare_thread);
   return patch;
 }
 
@@ -357,7 +235,6 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
   const FaceNamer namer =
       name_face ? name_face : [](Index f) { return "face " + std::to_string(f); };
   BindSetup setup;
-  setup.options = options;
   setup.vertex_count = bind.vertex_count();
   const Index nv = setup.vertex_count;
 
@@ -391,7 +268,8 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
   const std::vector<PatchChoice> choices = patch_choices(comps, controls, nv);
   // Patches are independent: each is set up into its own slot, by as many threads as asked, and
   // the first failing patch in order decides the error, as in a serial run.
-  std::vector<PatchNet> nets(comps.size());
+  std::vector<Patch> nets(comps.size());
+  setup.method = method_setup(options, comps.size());
   std::vector<std::exception_ptr> failed(comps.size());
   std::atomic<size_t> next{0};
   // With at least two threads a patch, each patch's set-up runs two things at once.
@@ -400,8 +278,8 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
     LocalIds local_ids(nv);
     for (size_t c; (c = next++) < comps.size();) {
       try {
-        nets[c] = patch_net(bind, comps[c], options, choices[c], pinned, setup.weight, local_ids,
-                            spare_thread);
+        nets[c] = patch_net(bind, comps[c], c, setup.method, choices[c], pinned, setup.weight,
+                            local_ids, spare_thread);
       } catch (const Error& e) {
         failed[c] = std::make_exception_ptr(Error(
             e.kind(), "patch " + std::to_string(c) + " (" + namer(comps[c].faces.front()) + ", " +
@@ -422,7 +300,7 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
   if (!pinned.empty()) {
     Index distinct = 0, used = 0;
     for (char p : pinned) distinct += p;
-    for (const PatchNet& p : setup.patches) used += static_cast<Index>(p.pinned.size());
+    for (const Patch& p : setup.patches) used += static_cast<Index>(p.pinned.size());
     setup.pins_ignored = distinct - used;
   }
   return setup;

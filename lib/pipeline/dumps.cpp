@@ -24,32 +24,35 @@ void make_dir(const std::string& dir) {
 }
 
 // The attributes every dump carries (README "Dumps", header attributes).
-void describe(ExrImage& image, const std::string& source, const PatchNet& patch, int index,
+void describe(ExrImage& image, const std::string& source, const BindSetup& setup, int index,
               const char* net, const char* kind) {
   image.string_attributes = {{"skinslide.version", version()},
                              {"skinslide.source", source},
                              {"skinslide.net", net},
                              {"skinslide.image", kind}};
   image.int_attributes = {{"skinslide.patch", index}, {"skinslide.resolution", image.width}};
-  image.string_attributes.push_back({"skinslide.method", patch.elastic ? "elastic" : "paper"});
-  if (patch.elastic) return;  // the chart is a disk: no corners
+  image.string_attributes.push_back(
+      {"skinslide.method", method_name(method_options(setup.method))});
+  const auto corners =
+      square_corners(setup.method, static_cast<size_t>(index), setup.patches[index]);
+  if (!corners) return;  // the elastic method's chart is a disk: no corners
   static const char* const kCornerNames[4] = {"skinslide.corner00", "skinslide.corner10",
                                               "skinslide.corner11", "skinslide.corner01"};
   for (int k = 0; k < 4; ++k)
-    image.int_attributes.emplace_back(kCornerNames[k], patch.vertices[patch.corners[k]]);
+    image.int_attributes.emplace_back(kCornerNames[k], corners->vertices[k]);
 }
 
 void write_id(const std::string& path, const IdImage& ids, const std::string& source,
-              const PatchNet& patch, int index, const char* net) {
+              const BindSetup& setup, int index, const char* net) {
   ExrImage image;
   image.width = image.height = ids.size;
   image.uint_channels = {{"id", ids.ids}};
-  describe(image, source, patch, index, net, "id");
+  describe(image, source, setup, index, net, "id");
   write_exr(path, image);
 }
 
 void write_geometry(const std::string& path, const GeometryImage& geometry, const SlideField* slide,
-                    const std::string& source, const PatchNet& patch, int index, const char* net) {
+                    const std::string& source, const BindSetup& setup, int index, const char* net) {
   ExrImage image;
   image.width = image.height = geometry.size;
   image.float_channels = {
@@ -58,11 +61,11 @@ void write_geometry(const std::string& path, const GeometryImage& geometry, cons
     image.float_channels.push_back({"slide.X", slide->x});
     image.float_channels.push_back({"slide.Y", slide->y});
   }
-  describe(image, source, patch, index, net, "geometry");
+  describe(image, source, setup, index, net, "geometry");
   write_exr(path, image);
 }
 
-Positions3 local_points(const PatchNet& patch, const Positions3& positions) {
+Positions3 local_points(const Patch& patch, const Positions3& positions) {
   Positions3 points(patch.vertices.size());
   for (size_t k = 0; k < patch.vertices.size(); ++k) {
     const Index v = patch.vertices[k];
@@ -72,13 +75,13 @@ Positions3 local_points(const PatchNet& patch, const Positions3& positions) {
   return points;
 }
 
-bool has_net(const PatchNet& patch) {
+bool has_net(const Patch& patch) {
   return !patch.skipped && !patch.bind_net.empty() &&
          patch.bind_net.size() == patch.vertices.size();
 }
 
-int geometry_size(const BindSetup& setup, const DumpOptions& options) {
-  const int size = options.geometry_size > 0 ? options.geometry_size : setup.options.lookup_size;
+int geometry_size(const DumpOptions& options) {
+  const int size = options.geometry_size > 0 ? options.geometry_size : options.id_image_size;
   SKINSLIDE_CHECK(size >= 1, "geometry image size");
   return size;
 }
@@ -115,17 +118,17 @@ void write_bind_dumps(const std::string& dump_dir, const std::string& bind_path,
                       const BindSetup& setup, const Positions3& bind_positions,
                       const DumpOptions& options) {
   make_dir(dump_dir);
-  const int size = geometry_size(setup, options);
+  const int size = geometry_size(options);
   for (size_t k = 0; k < setup.patches.size(); ++k) {
-    const PatchNet& patch = setup.patches[k];
+    const Patch& patch = setup.patches[k];
     if (!has_net(patch)) continue;
     const int index = static_cast<int>(k);
-    const IdImage ids = id_raster(patch.bind_net, patch.triangles, setup.options.lookup_size);
-    write_id(dump_path(dump_dir, "bind", index, "id.exr"), ids, bind_path, patch, index, "bind");
+    const IdImage ids = id_raster(patch.bind_net, patch.triangles, options.id_image_size);
+    write_id(dump_path(dump_dir, "bind", index, "id.exr"), ids, bind_path, setup, index, "bind");
     const GeometryImage geometry =
         geometry_image(patch.bind_net, patch.triangles, local_points(patch, bind_positions), size);
     write_geometry(dump_path(dump_dir, "bind", index, "geom.exr"), geometry, nullptr, bind_path,
-                   patch, index, "bind");
+                   setup, index, "bind");
   }
 }
 
@@ -135,23 +138,23 @@ void write_frame_dumps(const std::string& dump_dir, const std::string& frame_pat
   SKINSLIDE_CHECK(reports.size() == setup.patches.size(), "one report per patch");
   make_dir(dump_dir);
   const std::string stem = dump_stem(frame_path);
-  const int size = geometry_size(setup, options);
+  const int size = geometry_size(options);
   for (size_t k = 0; k < setup.patches.size(); ++k) {
-    const PatchNet& patch = setup.patches[k];
+    const Patch& patch = setup.patches[k];
     const PatchFrameReport& report = reports[k];
     if (!has_net(patch) || report.frame_net.size() != patch.bind_net.size()) continue;
     const int index = static_cast<int>(k);
     SKINSLIDE_CHECK(report.id_image.size > 0,
-                    "frame dumps need the ID image: slide_frame(..., {.id_image = true})");
-    write_id(dump_path(dump_dir, stem, index, "id.exr"), report.id_image, frame_path, patch, index,
+                    "frame dumps need the ID image: slide_frame(..., {.id_image_size = N})");
+    write_id(dump_path(dump_dir, stem, index, "id.exr"), report.id_image, frame_path, setup, index,
              "frame");
     // The paper's frame has a net of its own; the elastic method's frame lies over the chart.
-    const Positions2& frame_net = patch.elastic ? patch.bind_net : report.frame_net;
+    const Positions2& frame_net = report.frame_in_bind_net ? patch.bind_net : report.frame_net;
     const GeometryImage geometry =
         geometry_image(frame_net, patch.triangles, local_points(patch, frame_positions), size);
     const SlideField slide = slide_field(patch.bind_net, report.frame_net, patch.triangles, size);
     write_geometry(dump_path(dump_dir, stem, index, "geom.exr"), geometry, &slide, frame_path,
-                   patch, index, "frame");
+                   setup, index, "frame");
   }
 }
 
@@ -162,12 +165,12 @@ void write_previews(const std::string& preview_dir, const std::string& frame_pat
   make_dir(preview_dir);
   const std::string stem = dump_stem(frame_path);
   for (size_t k = 0; k < setup.patches.size(); ++k) {
-    const PatchNet& patch = setup.patches[k];
+    const Patch& patch = setup.patches[k];
     const PatchFrameReport& report = reports[k];
     if (!has_net(patch) || report.frame_net.size() != patch.bind_net.size()) continue;
     const RgbImage image =
         preview_image(patch.bind_net, report.frame_net, patch.bars, patch.free_vertices,
-                      options.preview_size, PreviewColors{}, patch.elastic != nullptr);
+                      options.preview_size, PreviewColors{}, report.frame_in_bind_net);
     write_png(dump_path(preview_dir, stem, static_cast<int>(k), "png"), image.width, image.height,
               image.rgb);
   }

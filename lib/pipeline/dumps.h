@@ -15,14 +15,19 @@
 #include <vector>
 
 #include "core/types.h"
+#include "locate/id_raster.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/slide_frame.h"
 
 namespace skinslide {
 
+/// The default side of the preview PNGs in pixels (--preview-size).
+constexpr int kPreviewSize = 1024;
+
 struct DumpOptions {
-  int geometry_size = 0;    ///< side of the geometry images in texels; 0 = the lookup size
-  int preview_size = 1024;  ///< side of the preview PNGs in pixels, >= 16
+  int id_image_size = kLookupSize;  ///< side of the ID images in pixels (--lookup-size)
+  int geometry_size = 0;            ///< side of the geometry images in texels; 0 = id_image_size
+  int preview_size = kPreviewSize;  ///< side of the preview PNGs in pixels, >= 16
 };
 
 /// The stem a mesh path's dumps are named after: "frames/f0003.obj" -> "f0003".
@@ -38,7 +43,7 @@ std::string dump_path(const std::string& dir, const std::string& stem, int patch
 /// \throw Error(Usage) naming the frame(s).
 void check_dump_stems(const std::vector<std::string>& frame_paths);
 
-/// The bind's dumps: per patch, the bind net's ID image at setup.options.lookup_size (the image
+/// The bind's dumps: per patch, the bind net's ID image at options.id_image_size (the image
 /// point location would use for an identity frame) and its geometry image (P from
 /// `bind_positions`, A). Creates `dump_dir` if needed.
 /// \param bind_path the bind's file, recorded in the headers (skinslide.source)
@@ -49,8 +54,8 @@ void write_bind_dumps(const std::string& dump_dir, const std::string& bind_path,
                       const DumpOptions& options = {});
 
 /// One frame's dumps: per patch, the ID image point location used (report.id_image, so the
-/// frame must come from slide_frame(..., {.id_image = true})) and the frame net's geometry
-/// image (P from `frame_positions`, A) with the slide field (slide.X, slide.Y; see
+/// frame must come from slide_frame(..., {.id_image_size = options.id_image_size})) and the frame
+/// net's geometry image (P from `frame_positions`, A) with the slide field (slide.X, slide.Y; see
 /// dump/slide_field.h). Creates `dump_dir` if needed.
 /// \param reports slide_frame()'s FrameResult::patches, parallel to setup.patches
 /// \throw Error(Output) naming the file; Error(Internal) when an ID image was not kept.

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
+#include <variant>
 
 #include "core/version.h"
 #include "io/number_format.h"
-#include "unwrap/bar_net.h"
 
 namespace skinslide {
 namespace {
@@ -81,184 +82,114 @@ std::string inline_array(const std::vector<std::string>& items) {
   return out + "]";
 }
 
-// What --frame-solver auto chose for the patch, in the option's words.
-std::string solver_name(const PatchNet& p) {
-  if (p.skipped || !p.solver) return "none";
-  switch (p.solver->method()) {
-    case FrameNetMethod::Cholesky:
-      return "cholesky";
-    case FrameNetMethod::Cg:
-      return "cg";
-    case FrameNetMethod::Multigrid:
-      return "multigrid";
+std::string json(const FigureValue& value) {
+  return std::visit(
+      [](const auto& v) -> std::string {
+        using Value = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<Value, long long> || std::is_same_v<Value, double>)
+          return number(v);
+        else if constexpr (std::is_same_v<Value, bool>)
+          return boolean(v);
+        else if constexpr (std::is_same_v<Value, std::string>)
+          return quoted(v);
+        else {
+          std::vector<std::string> items;
+          for (long long x : v) items.push_back(number(x));
+          return inline_array(items);
+        }
+      },
+      value);
+}
+
+Object& add(Object& object, const Figures& figures) {
+  for (const Figure& f : figures) object.add(f.key, json(f.value));
+  return object;
+}
+
+std::string controls_json(const BindSetup& setup, const RunReport& run) {
+  return Object(2)
+      .add("weights", run.weights.empty() ? "null" : quoted(run.weights))
+      .add("strength", number(run.strength))
+      .add("pins", run.pins.empty() ? "null" : quoted(run.pins))
+      .add("pins_requested", number(static_cast<long long>(run.pins_requested)))
+      .add("pins_ignored", number(static_cast<long long>(setup.pins_ignored)))
+      .str();
+}
+
+std::string patches_json(const BindSetup& setup) {
+  std::vector<std::string> patches;
+  for (size_t p = 0; p < setup.patches.size(); ++p) {
+    Object patch(4);
+    patches.push_back(add(patch, patch_figures(setup.method, p, setup.patches[p])).str());
   }
-  return "?";
+  return array(patches, 2);
+}
+
+// What the frames' figures add up to, and the timings summed over them.
+struct FrameSums {
+  long long moved = 0;
+  double max_slide = 0;
+  std::vector<MethodReport> reports;  ///< every patch of every frame
+  double read = 0, solve = 0, locate = 0, transfer = 0, write = 0;
+};
+
+// One frame's entry: per patch the method's figures, then the slide's, which both have.
+std::string frame_json(const ReportFrame& f, FrameSums& sums) {
+  std::vector<std::string> patches;
+  for (const PatchFrameReport& r : f.patches) {
+    Object patch(8);
+    patches.push_back(add(patch, frame_figures(r)).str());
+    sums.moved += r.moved;
+    sums.max_slide = std::max(sums.max_slide, r.max_slide);
+    sums.reports.push_back(r.method);
+    sums.solve += r.solve_seconds;
+    sums.locate += r.locate_seconds;
+    sums.transfer += r.transfer_seconds;
+  }
+  sums.read += f.read_seconds;
+  sums.write += f.write_seconds;
+  return Object(4)
+      .add("path", quoted(f.path))
+      .add("output", quoted(f.output))
+      .add("patches", array(patches, 6))
+      .str();
+}
+
+std::string timings_json(const RunReport& run, const FrameSums& sums) {
+  return Object(2)
+      .add("bind_setup", number(run.bind_seconds))
+      .add("read", number(sums.read))
+      .add("solve", number(sums.solve))
+      .add("locate", number(sums.locate))
+      .add("transfer", number(sums.transfer))
+      .add("write", number(sums.write))
+      .add("wall", number(run.wall_seconds))
+      .str();
 }
 
 }  // namespace
 
 std::string report_json(const BindSetup& setup, const RunReport& run) {
-  const SlideOptions& o = setup.options;
   Object root(0);
   root.add("skinslide", quoted(version()));
   root.add("bind", quoted(run.bind));
   std::vector<std::string> files;
   for (const std::string& f : run.patch_files) files.push_back(quoted(f));
   root.add("patch_files", inline_array(files));
-  const bool elastic = o.method == SlideMethod::Elastic;
-  if (elastic)
-    root.add("options",
-             Object(2)
-                 .add("method", quoted(to_string(o.method)))
-                 .add("rotation_fits", number(static_cast<long long>(o.elastic.rotation_fits)))
-                 .add("max_iterations", number(static_cast<long long>(o.elastic.max_iterations)))
-                 .add("tolerance", number(o.elastic.tolerance))
-                 .str());
-  else
-    root.add("options",
-             Object(2)
-                 .add("method", quoted(to_string(o.method)))
-                 .add("density", quoted(to_string(o.density)))
-                 .add("holes", quoted(to_string(o.holes)))
-                 .add("q_floor", number(o.q_floor))
-                 .add("frame_solver", quoted(to_string(o.frame_solver)))
-                 .add("cg_tolerance", number(o.cg_tolerance))
-                 .add("cg_max_iterations", number(static_cast<long long>(o.cg_max_iterations)))
-                 .add("locate", quoted(to_string(o.locate)))
-                 .add("lookup_size", number(static_cast<long long>(o.lookup_size)))
-                 .str());
-  root.add("controls",
-           Object(2)
-               .add("weights", run.weights.empty() ? "null" : quoted(run.weights))
-               .add("strength", number(run.strength))
-               .add("pins", run.pins.empty() ? "null" : quoted(run.pins))
-               .add("pins_requested", number(static_cast<long long>(run.pins_requested)))
-               .add("pins_ignored", number(static_cast<long long>(setup.pins_ignored)))
-               .str());
-  std::vector<std::string> patches;
-  for (const PatchNet& p : setup.patches) {
-    std::vector<std::string> corners;
-    if (!p.skipped)
-      for (Index c : p.corners) corners.push_back(number(static_cast<long long>(p.vertices[c])));
-    if (elastic) {
-      patches.push_back(
-          Object(4)
-              .add("faces", number(static_cast<long long>(p.faces.size())))
-              .add("vertices", number(static_cast<long long>(p.vertices.size())))
-              .add("free", number(static_cast<long long>(p.free_vertices.size())))
-              .add("pinned", number(static_cast<long long>(p.pinned.size())))
-              .add("moving",
-                   number(static_cast<long long>(p.elastic ? p.elastic->movable.size() : 0)))
-              .add("loops", number(static_cast<long long>(p.loops.size())))
-              .add("outer_loop_start",
-                   number(static_cast<long long>(p.vertices[p.loops[p.outer_loop].front()])))
-              .add("outer_loop_chosen", boolean(p.outer_loop_chosen))
-              .add("skipped", boolean(p.skipped))
-              .add("chart_weights", quoted(!p.elastic                         ? "none"
-                                           : p.elastic->chart.uniform_weights ? "uniform"
-                                                                              : "mean value"))
-              .str());
-      continue;
-    }
-    patches.push_back(Object(4)
-                          .add("faces", number(static_cast<long long>(p.faces.size())))
-                          .add("vertices", number(static_cast<long long>(p.vertices.size())))
-                          .add("free", number(static_cast<long long>(p.free_vertices.size())))
-                          .add("pinned", number(static_cast<long long>(p.pinned.size())))
-                          .add("loops", number(static_cast<long long>(p.loops.size())))
-                          .add("outer_loop_start", number(static_cast<long long>(
-                                                       p.vertices[p.loops[p.outer_loop].front()])))
-                          .add("outer_loop_chosen", boolean(p.outer_loop_chosen))
-                          .add("corners", inline_array(corners))
-                          .add("corners_chosen", boolean(p.corners_chosen))
-                          .add("skipped", boolean(p.skipped))
-                          .add("bind_net_flips", number(static_cast<long long>(p.bind_net_flips)))
-                          .add("frame_solver", quoted(solver_name(p)))
-                          .str());
-  }
-  root.add("patches", array(patches, 2));
-
-  long long moved = 0, iterations = 0, direct = 0, fallbacks = 0, flips = 0, held = 0;
-  double max_slide = 0;
-  double read = 0, solve = 0, locate = 0, transfer = 0, write = 0;
+  Object options(2);
+  root.add("options", add(options, option_figures(setup.method)).str());
+  root.add("controls", controls_json(setup, run));
+  root.add("patches", patches_json(setup));
+  FrameSums sums;
   std::vector<std::string> frames;
-  for (const ReportFrame& f : run.frames) {
-    std::vector<std::string> fp;
-    for (const PatchFrameReport& r : f.patches) {
-      // Each method's own figures, then the slide's, which both have.
-      Object patch(8);
-      if (elastic) {
-        patch.add("energy_before", number(r.energy_before))
-            .add("energy_after", number(r.energy_after))
-            .add("iterations", number(static_cast<long long>(r.iterations)))
-            .add("stop", quoted(r.stop.empty() ? "skipped" : r.stop))
-            .add("held", number(static_cast<long long>(r.held)))
-            .add("flips", number(static_cast<long long>(r.slid_flips)));
-        iterations += r.iterations;
-        held += r.held;
-        flips += r.slid_flips;
-      } else {
-        patch.add("cg_iterations", number(static_cast<long long>(r.cg_iterations)))
-            .add("cg_residual", number(r.cg_residual))
-            .add("direct_solve", boolean(r.direct_solve))
-            .add("located_in_image", number(static_cast<long long>(r.located_in_image)))
-            .add("located_fallback", number(static_cast<long long>(r.located_fallback)))
-            .add("frame_net_flips", number(static_cast<long long>(r.frame_net_flips)));
-        iterations += r.cg_iterations;
-        direct += r.direct_solve;
-        fallbacks += r.located_fallback;
-        flips += r.frame_net_flips;
-        locate += r.locate_seconds;
-      }
-      patch.add("moved", number(static_cast<long long>(r.moved)))
-          .add("max_slide", number(r.max_slide))
-          .add("mean_slide", number(r.mean_slide))
-          .add("spread_frame", number(r.spread_frame))
-          .add("spread_slid", number(r.spread_slid));
-      fp.push_back(patch.str());
-      moved += r.moved;
-      max_slide = std::max(max_slide, r.max_slide);
-      solve += r.solve_seconds;
-      transfer += r.transfer_seconds;
-    }
-    read += f.read_seconds;
-    write += f.write_seconds;
-    frames.push_back(Object(4)
-                         .add("path", quoted(f.path))
-                         .add("output", quoted(f.output))
-                         .add("patches", array(fp, 6))
-                         .str());
-  }
+  for (const ReportFrame& f : run.frames) frames.push_back(frame_json(f, sums));
   root.add("frames", array(frames, 2));
-  if (elastic)
-    root.add("totals", Object(2)
-                           .add("frames", number(static_cast<long long>(run.frames.size())))
-                           .add("moved", number(moved))
-                           .add("iterations", number(iterations))
-                           .add("held", number(held))
-                           .add("flips", number(flips))
-                           .add("max_slide", number(max_slide))
-                           .str());
-  else
-    root.add("totals", Object(2)
-                           .add("frames", number(static_cast<long long>(run.frames.size())))
-                           .add("moved", number(moved))
-                           .add("cg_iterations", number(iterations))
-                           .add("direct_solves", number(direct))
-                           .add("fallbacks", number(fallbacks))
-                           .add("frame_net_flips", number(flips))
-                           .add("max_slide", number(max_slide))
-                           .str());
-  if (run.timings)
-    root.add("timings", Object(2)
-                            .add("bind_setup", number(run.bind_seconds))
-                            .add("read", number(read))
-                            .add("solve", number(solve))
-                            .add("locate", number(locate))
-                            .add("transfer", number(transfer))
-                            .add("write", number(write))
-                            .add("wall", number(run.wall_seconds))
-                            .str());
+  Object totals(2);
+  totals.add("frames", number(static_cast<long long>(run.frames.size())))
+      .add("moved", number(sums.moved));
+  add(totals, total_figures(setup.method, sums.reports)).add("max_slide", number(sums.max_slide));
+  root.add("totals", totals.str());
+  if (run.timings) root.add("timings", timings_json(run, sums));
   return root.str() + "\n";
 }
 

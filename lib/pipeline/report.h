@@ -37,16 +37,14 @@ struct RunReport {
 };
 
 /// The report as JSON text (UTF-8, 2-space indent, final newline). Layout:
-/// { "skinslide": version, "bind", "patch_files", "options": {density, holes, q_floor,
-///   frame_solver, cg_tolerance, cg_max_iterations, locate, lookup_size}, "controls": {weights,
-///   strength, pins, pins_requested, pins_ignored}, "patches": [per patch: faces, vertices, free,
-///   pinned, loops, outer_loop_start, outer_loop_chosen, corners, corners_chosen, skipped,
-///   bind_net_flips, frame_solver (cholesky, multigrid or cg; none when skipped)], "frames":
-///   [{path, output, patches: [{cg_iterations, cg_residual, direct_solve, located_in_image,
-///   located_fallback, frame_net_flips, moved, max_slide, mean_slide, spread_frame,
-///   spread_slid}]}], "totals": {frames, moved, cg_iterations, direct_solves, fallbacks,
-///   frame_net_flips, max_slide}, "timings": {seconds per stage summed over frames: bind_setup,
-///   read, solve, locate, transfer, write; wall} }
+/// { "skinslide": version, "bind", "patch_files", "options": {method, then its tunables
+///   (method.h option_figures)}, "controls": {weights, strength, pins, pins_requested,
+///   pins_ignored}, "patches": [per patch: faces, vertices, free, pinned, loops,
+///   outer_loop_start, outer_loop_chosen, skipped and the method's figures, in the order
+///   patch_figures gives them], "frames": [{path, output, patches: [{the method's figures
+///   (report_figures), moved, max_slide, mean_slide, spread_frame, spread_slid}]}], "totals":
+///   {frames, moved, the method's sums (total_figures), max_slide}, "timings": {seconds per
+///   stage summed over frames: bind_setup, read, solve, locate, transfer, write; wall} }
 /// Skipped patches report zeros. Vertex ids are mesh ids.
 std::string report_json(const BindSetup& setup, const RunReport& run);
 

@@ -40,12 +40,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::string fmt(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
-
 // Same file (by identity when it exists, else by normalised path).
 bool same_file(const fs::path& a, const fs::path& b) {
   std::error_code ec;
@@ -190,94 +184,25 @@ SlideControls slide_controls(const RunOptions& o, const MeshFile& bind, RunRepor
 
 // ---- A frame's log lines ----------------------------------------------------------------------
 
-std::string solver_label(FrameNetMethod method, int iterations) {
-  switch (method) {
-    case FrameNetMethod::Cholesky:
-      return "Cholesky";
-    case FrameNetMethod::Cg:
-      return "CG " + std::to_string(iterations) + " it";
-    case FrameNetMethod::Multigrid:
-      return "multigrid " + std::to_string(iterations) + " it";
-  }
-  return "?";
-}
-
-// The frame's solvers, each once, in patch order; an iterative one with its most iterations.
-std::string solvers_used(const BindSetup& setup, const FrameResult& result) {
-  std::vector<std::pair<FrameNetMethod, int>> used;
-  for (size_t p = 0; p < result.patches.size(); ++p) {
-    if (setup.patches[p].skipped) continue;
-    const FrameNetMethod m = setup.patches[p].solver->method();
-    auto it = std::find_if(used.begin(), used.end(), [&](const auto& u) { return u.first == m; });
-    if (it == used.end()) it = used.insert(used.end(), {m, 0});
-    it->second = std::max(it->second, result.patches[p].cg_iterations);
-  }
-  if (used.empty()) return "no frame net";
-  std::string text;
-  for (const auto& [method, iterations] : used)
-    text += (text.empty() ? "" : " + ") + solver_label(method, iterations);
-  return text;
-}
-
-// One patch of an elastic frame, for -v.
-std::string elastic_patch_line(const PatchFrameReport& r) {
-  return "elastic " + std::to_string(r.iterations) + " it (" + r.stop + "), energy " +
-         fmt(r.energy_before) + " -> " + fmt(r.energy_after) + ", held " + std::to_string(r.held) +
-         ", flips " + std::to_string(r.slid_flips) + ", slide max " + fmt(r.max_slide) + " mean " +
-         fmt(r.mean_slide);
-}
-
-// The elastic frame's summary: most steps, and the energy left as a share of the frame's.
-std::string elastic_summary(const BindSetup& setup, const FrameResult& result) {
-  int iterations = 0, flips = 0;
-  double before = 0, after = 0;
-  for (size_t p = 0; p < result.patches.size(); ++p) {
-    if (setup.patches[p].skipped) continue;
-    const PatchFrameReport& r = result.patches[p];
-    iterations = std::max(iterations, r.iterations);
-    flips += r.slid_flips;
-    before += r.energy_before;
-    after += r.energy_after;
-  }
-  return "elastic " + std::to_string(iterations) + " it, energy left " +
-         (before > 0 ? fmt(100 * after / before) + "%" : std::string("0")) + ", flips " +
-         std::to_string(flips);
-}
-
 // A slid frame's lines: a summary (Info), then a line per patch (Detail).
 std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& result,
                                  const std::string& frame_path, const std::string& out_path) {
-  int fallbacks = 0;
   double max_slide = 0;
-  for (const PatchFrameReport& p : result.patches) {
-    fallbacks += p.located_fallback;
-    max_slide = std::max(max_slide, p.max_slide);
-  }
-  const bool elastic = setup.options.method == SlideMethod::Elastic;
+  for (const PatchFrameReport& p : result.patches) max_slide = std::max(max_slide, p.max_slide);
+  const std::vector<MethodReport> reports = method_reports(result.patches);
   std::vector<LogLine> lines;
-  lines.push_back({LogLevel::Info,
-                   "skinslide: " + frame_path + ": " + std::to_string(setup.patches.size()) +
-                       " patches, " +
-                       (elastic ? elastic_summary(setup, result) : solvers_used(setup, result)) +
-                       ", max slide " + fmt(max_slide) +
-                       (elastic ? std::string() : ", " + std::to_string(fallbacks) + " fallbacks") +
-                       " -> " + out_path});
+  lines.push_back({LogLevel::Info, "skinslide: " + frame_path + ": " +
+                                       std::to_string(setup.patches.size()) + " patches, " +
+                                       frame_summary(setup.method, setup.patches, reports,
+                                                     ", max slide " + log_number(max_slide)) +
+                                       " -> " + out_path});
   for (size_t p = 0; p < result.patches.size(); ++p) {
     const PatchFrameReport& r = result.patches[p];
-    const PatchNet& n = setup.patches[p];
-    std::string line;
-    if (n.skipped)
-      line = "skipped (all vertices on loops)";
-    else if (elastic)
-      line = elastic_patch_line(r);
-    else
-      line = solver_label(n.solver->method(), r.cg_iterations) +
-             (n.solver->method() == FrameNetMethod::Cholesky ? ""
-                                                             : ", residual " + fmt(r.cg_residual)) +
-             (r.direct_solve ? " (solved directly)" : "") + ", located " +
-             std::to_string(r.located_in_image) + " + " + std::to_string(r.located_fallback) +
-             " fallback, net flips " + std::to_string(r.frame_net_flips) + ", slide max " +
-             fmt(r.max_slide) + " mean " + fmt(r.mean_slide);
+    const std::string line = setup.patches[p].skipped
+                                 ? "skipped (all vertices on loops)"
+                                 : patch_summary(setup.method, p, r.method) + ", slide max " +
+                                       log_number(r.max_slide) + " mean " +
+                                       log_number(r.mean_slide);
     lines.push_back({LogLevel::Detail, "  patch " + std::to_string(p) + ": " + line});
   }
   return lines;
@@ -288,24 +213,19 @@ std::vector<LogLine> bind_lines(const RunOptions& o, const BindSetup& setup,
                                 const SlideControls& controls) {
   std::vector<LogLine> lines;
   size_t sliding = 0;
-  for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
-  const SlideOptions& options = o.slide;
+  for (const Patch& p : setup.patches) sliding += p.free_vertices.size();
   if (o.no_slide)
     lines.push_back({LogLevel::Info, "skinslide: " + o.bind +
                                          ": --no-slide: frames are read, checked and written "
                                          "unchanged"});
   else
-    lines.push_back(
-        {LogLevel::Info, "skinslide: " + o.bind + ": " + std::to_string(setup.patches.size()) +
-                             " patches, " + std::to_string(sliding) + " sliding vertices (" +
-                             (options.method == SlideMethod::Paper
-                                  ? "method paper, density " + to_string(options.density) +
-                                        ", holes " + to_string(options.holes)
-                                  : std::string("method elastic")) +
-                             ")"});
-  const auto v = [&](const PatchNet& n, Index local) { return std::to_string(n.vertices[local]); };
+    lines.push_back({LogLevel::Info, "skinslide: " + o.bind + ": " +
+                                         std::to_string(setup.patches.size()) + " patches, " +
+                                         std::to_string(sliding) + " sliding vertices (" +
+                                         method_label(setup.method) + ")"});
+  const auto v = [&](const Patch& n, Index local) { return std::to_string(n.vertices[local]); };
   for (size_t p = 0; p < setup.patches.size(); ++p) {
-    const PatchNet& n = setup.patches[p];
+    const Patch& n = setup.patches[p];
     lines.push_back({LogLevel::Detail, "  patch " + std::to_string(p) + ": " +
                                            std::to_string(n.faces.size()) + " faces, " +
                                            std::to_string(n.vertices.size()) + " vertices, " +
@@ -316,9 +236,10 @@ std::vector<LogLine> bind_lines(const RunOptions& o, const BindSetup& setup,
     if (n.skipped) continue;
     std::string loop = "    outer loop from vertex " + v(n, n.loops[n.outer_loop].front()) +
                        (n.outer_loop_chosen ? " (chosen)" : "");
-    if (!n.elastic)  // the elastic chart is a disk: no corners
-      loop += ", corners " + v(n, n.corners[0]) + "," + v(n, n.corners[1]) + "," +
-              v(n, n.corners[2]) + "," + v(n, n.corners[3]) + (n.corners_chosen ? " (chosen)" : "");
+    if (const auto c = square_corners(setup.method, p, n))  // the elastic chart is a disk: none
+      loop += ", corners " + std::to_string(c->vertices[0]) + "," + std::to_string(c->vertices[1]) +
+              "," + std::to_string(c->vertices[2]) + "," + std::to_string(c->vertices[3]) +
+              (c->chosen ? " (chosen)" : "");
     lines.push_back({LogLevel::Detail, loop + ", " + std::to_string(n.pinned.size()) + " pinned"});
   }
   if (!controls.pins.empty())
@@ -350,7 +271,8 @@ FrameResult slide_named(const BindSetup& setup, const RunOptions& o, const Posit
                         const std::string& name) {
   try {
     return slide_frame(setup, positions,
-                       {.id_image = !o.dump_dir.empty(), .edge_spread = !o.report.empty()});
+                       {.id_image_size = o.dump_dir.empty() ? 0 : o.lookup_size,
+                        .edge_spread = !o.report.empty()});
   } catch (const Error& e) {
     throw Error(e.kind(), name + ": " + e.what());
   }
@@ -362,6 +284,7 @@ void write_frame_pictures(const BindSetup& setup, const RunOptions& o,
                           const std::string& named_after, const Positions3& frame_positions,
                           const FrameResult& result) {
   DumpOptions dump_options;
+  dump_options.id_image_size = o.lookup_size;
   dump_options.preview_size = o.preview_size;
   if (!o.dump_dir.empty())
     write_frame_dumps(o.dump_dir, named_after, setup, frame_positions, result.patches,
@@ -454,7 +377,7 @@ std::vector<LogLine> run_rig_frame(const BindSetup& setup, const MeshFile& chara
                                    const RigClip& clip, const RunOptions& o, size_t k,
                                    const std::string& out_path, CacheSlot slot,
                                    ReportFrame* record) {
-  const std::string label = clip.names[k] + " (t = " + fmt(clip.times[k]) + " s)";
+  const std::string label = clip.names[k] + " (t = " + log_number(clip.times[k]) + " s)";
   auto t0 = std::chrono::steady_clock::now();
   const MeshFile frame = rig_frame(character, clip, k);
   const double pose_seconds = seconds_since(t0);
@@ -646,7 +569,9 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   report.bind_seconds = seconds_since(t_run);
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
   make_output_dir(o.output);
-  if (!o.dump_dir.empty()) write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions);
+  if (!o.dump_dir.empty())
+    write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions,
+                     {.id_image_size = o.lookup_size});
   // A cache output is written sample by sample at its offsets, renamed into place once complete.
   std::unique_ptr<CacheWriter> cache_out;
   if (!plan.cache.empty())

@@ -14,6 +14,8 @@
 #include "core/error.h"
 #include "core/types.h"
 #include "io/point_cache.h"
+#include "locate/id_raster.h"
+#include "pipeline/dumps.h"
 #include "pipeline/options.h"
 #include "pipeline/rig_frames.h"
 
@@ -33,14 +35,15 @@ struct RunOptions {
   /// cache); empty = "glb" for `rig`, the cache's own format for a cache FRAME (cache_frames.h).
   std::string format;
   // Outputs
-  std::string output = "slid";  ///< folder of the slid frames, created if missing
-  std::string dump_dir;         ///< --dump: EXR images of the nets; empty = none
-  std::string preview_dir;      ///< --preview: PNG pictures of the nets; empty = none
-  int preview_size = 1024;      ///< side of the preview PNGs, pixels
-  std::string report;           ///< --report JSON file; empty = none
-  bool report_timings = true;   ///< false: --report-no-timings
+  std::string output = "slid";      ///< folder of the slid frames, created if missing
+  std::string dump_dir;             ///< --dump: EXR images of the nets; empty = none
+  std::string preview_dir;          ///< --preview: PNG pictures of the nets; empty = none
+  int preview_size = kPreviewSize;  ///< side of the preview PNGs, pixels
+  int lookup_size = kLookupSize;    ///< side of the dumps' ID images, pixels (--lookup-size)
+  std::string report;               ///< --report JSON file; empty = none
+  bool report_timings = true;       ///< false: --report-no-timings
   // Method
-  SlideOptions slide;
+  SlideOptions slide;  ///< the method and its options
   // Controls (README "Controls"), read after the bind: their ids are checked against it.
   std::string weights;                      ///< --weights file; empty = none
   std::string weights_from_obj_color;       ///< "r", "g" or "b" of the OBJ bind; empty = none

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/allocator.h"
@@ -28,6 +29,7 @@
 #include "io/patch_file.h"
 #include "locate/locate.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/method.h"
 #include "pipeline/options.h"
 #include "pipeline/slide_frame.h"
 #include "unwrap/bar_net.h"
@@ -64,25 +66,27 @@ struct Samples {
 };
 
 // The stages of slide_frame (pipeline/slide_frame.cpp), one patch, each timed on its own.
-void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3& frame,
-                Samples& s) {
+void time_patch(const BindSetup& setup, size_t index, const Positions3& frame, Samples& s) {
+  const Patch& patch = setup.patches[index];
   if (patch.skipped) return;
-  const SlideOptions& opt = setup.options;
   auto t0 = Clock::now();
   Positions3 points(patch.vertices.size());
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
-  if (patch.elastic) {  // the elastic method: one relaxation in the chart (slide_frame's transfer
-                        // of its result is the rest of slide_frame's time)
-    const ElasticResult relaxed = relax_patch(*patch.elastic, points, opt.elastic);
+  if (const auto* elastic = std::get_if<ElasticMethod>(&setup.method)) {
+    // The elastic method: one relaxation in the chart (slide_frame's transfer of its result is
+    // the rest of slide_frame's time).
+    const ElasticResult relaxed = relax_patch(*elastic->patches[index], points, elastic->options);
     s.add("relax", ms_since(t0));
     s.add("elastic_iterations", relaxed.iterations);
     s.add("elastic_solves", relaxed.solves);
     s.add("elastic_cg_iterations", relaxed.solver_iterations);
     return;
   }
+  const PaperOptions& opt = std::get<PaperMethod>(setup.method).options;
+  const PaperSetup& paper = std::get<PaperMethod>(setup.method).patches[index];
   const std::vector<double> q =
       force_densities(bar_lengths(points, patch.bars), opt.density, opt.q_floor);
-  const FrameNetSolution net = patch.solver->solve(q, frame_net_options(opt));
+  const FrameNetSolution net = paper.solver->solve(q, frame_net_options(opt));
   s.add("frame_net", ms_since(t0));
   s.add("cg_iterations", net.iterations);
   s.add("direct_solves", net.direct ? 1 : 0);
@@ -99,7 +103,7 @@ void time_patch(const BindSetup& setup, const PatchNet& patch, const Positions3&
     const std::vector<Index> reversed = count_folds(net.positions, patch.triangles).reversed;
     t0 = Clock::now();
     where = locate_points_by_walk(targets, patch.free_vertices, net.positions, patch.triangles,
-                                  patch.topology, reversed);
+                                  paper.topology, reversed);
   }
   s.add("locate", ms_since(t0));
   size_t fallbacks = 0;
@@ -134,16 +138,16 @@ int stages(int repeat, const SlideOptions& options, const std::string& out_dir,
     s.add("bind_setup", ms_since(t0));
   }
   size_t sliding = 0;
-  for (const PatchNet& p : setup.patches) sliding += p.free_vertices.size();
+  for (const Patch& p : setup.patches) sliding += p.free_vertices.size();
   s.add("patch_vertices", static_cast<double>(sliding));
   s.add("mesh_vertices", bind.mesh.vertex_count());
-  double factor_entries = 0, factor_mb = 0;
-  for (const PatchNet& p : setup.patches)
-    if (p.elastic) {
-      factor_entries += static_cast<double>(p.elastic->metric.factor.entries());
-      factor_mb += static_cast<double>(p.elastic->metric.factor.bytes()) / 1e6;
-    }
-  if (options.method == SlideMethod::Elastic) {
+  if (const auto* elastic = std::get_if<ElasticMethod>(&setup.method)) {
+    double factor_entries = 0, factor_mb = 0;
+    for (const auto& e : elastic->patches)
+      if (e) {
+        factor_entries += static_cast<double>(e->metric.factor.entries());
+        factor_mb += static_cast<double>(e->metric.factor.bytes()) / 1e6;
+      }
     s.add("elastic_factor_entries", factor_entries);
     s.add("elastic_factor_mb", factor_mb);
   }
@@ -154,7 +158,8 @@ int stages(int repeat, const SlideOptions& options, const std::string& out_dir,
       const MeshFile frame = read_mesh_file(path);
       require_same_topology(bind, frame);
       s.add("read", ms_since(t0));
-      for (const PatchNet& p : setup.patches) time_patch(setup, p, frame.mesh.positions, s);
+      for (size_t p = 0; p < setup.patches.size(); ++p)
+        time_patch(setup, p, frame.mesh.positions, s);
       t0 = Clock::now();
       const FrameResult result = slide_frame(setup, frame.mesh.positions);
       s.add("slide_frame", ms_since(t0));
@@ -175,21 +180,21 @@ int main(int argc, char** argv) {
   try {
     int repeat = 1;
     std::string out_dir;
-    SlideOptions options;
-    options.method = SlideMethod::Paper;
+    SlideOptions options = PaperOptions{};
     bool paper_only = false;
     bool bind_only = false;
+    PaperOptions paper;  // -l, -s
     std::vector<std::string> args;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "-r" && i + 1 < argc)
         repeat = std::max(1, std::atoi(argv[++i]));
       else if (a == "-m" && i + 1 < argc)
-        options.method = parse_method(argv[++i]);
+        options = parse_method(argv[++i]);
       else if (a == "-l" && i + 1 < argc)
-        options.locate = parse_locate(argv[++i]), paper_only = true;
+        paper.locate = parse_locate(argv[++i]), paper_only = true;
       else if (a == "-s" && i + 1 < argc)
-        options.frame_solver = parse_frame_solver(argv[++i]), paper_only = true;
+        paper.frame_solver = parse_frame_solver(argv[++i]), paper_only = true;
       else if (a == "-b")
         bind_only = true;
       else if (a == "-o" && i + 1 < argc)
@@ -197,8 +202,9 @@ int main(int argc, char** argv) {
       else
         args.push_back(a);
     }
-    if (out_dir.empty() || args.size() < (bind_only ? 2u : 3u) ||
-        (paper_only && options.method != SlideMethod::Paper)) {
+    const bool is_paper = std::holds_alternative<PaperOptions>(options);
+    if (is_paper) options = paper;
+    if (out_dir.empty() || args.size() < (bind_only ? 2u : 3u) || (paper_only && !is_paper)) {
       std::fprintf(stderr,
                    "usage: skinslide_bench_stages [-r REPEAT] [-m paper|elastic] [-s "
                    "auto|cholesky|multigrid|cg] [-l walk|image] [-b] -o DIR BIND PATCH FRAME...\n"

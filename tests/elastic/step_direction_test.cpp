@@ -22,7 +22,7 @@ namespace {
 std::shared_ptr<const ElasticSetup> grid_setup() {
   const PolyMesh mesh = test::quad_grid_with_holes(40, 40, {820, 821, 860, 861});
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
-  return setup.patches[0].elastic;
+  return std::get<ElasticMethod>(setup.method).patches[0];
 }
 
 // Jacobians of a frame turned and sheared smoothly over the grid, as a skinned limb's are.
@@ -140,7 +140,7 @@ TEST(StepDirection, HeldDirectionOnlyLowersTheModel) {
   Positions2 removed = free.d;
   for (size_t i = 0; i < held.size(); ++i)
     if (held[i]) removed[i].setZero();
-  const StepDirection relaxed = held_direction(e->metric, g, held, work);
+  const StepDirection relaxed = held_direction(e->metric, frames, g, held, work);
   ASSERT_TRUE(relaxed.finite);
   const SparseMatrix H = chart_system(*e, T, held);
   const Eigen::VectorXd r = chart_rhs(T, held, g);

@@ -69,7 +69,7 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return std::min({segment(a, b), segment(b, c), segment(c, a)});
 }
 
-double distance_to_patch(const PatchNet& patch, const Positions3& frame, const Vec3& x) {
+double distance_to_patch(const Patch& patch, const Positions3& frame, const Vec3& x) {
   double best = INFINITY;
   for (const Triangle& t : patch.triangles)
     best = std::min(
@@ -78,7 +78,7 @@ double distance_to_patch(const PatchNet& patch, const Positions3& frame, const V
   return best;
 }
 
-double edge_log_spread(const PatchNet& patch, const Positions3& bind, const Positions3& x) {
+double edge_log_spread(const Patch& patch, const Positions3& bind, const Positions3& x) {
   std::vector<double> r;
   for (const auto& [a, b] : patch.bars) {
     const Index u = patch.vertices[a], v = patch.vertices[b];

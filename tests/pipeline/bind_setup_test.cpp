@@ -62,20 +62,20 @@ TEST(BindSetup, PatchesSetUpInParallelEqualTheSerialSetUp) {
 // solve. The set-up and every slid bit are those of one thread.
 TEST(BindSetup, AMultigridPatchSetUpOnTwoThreadsEqualsTheSerialSetUp) {
   const Blocks b;
-  SlideOptions options = test::paper_options();
+  PaperOptions options;
   options.frame_solver = FrameSolver::Multigrid;
   const BindSetup one = bind_setup(b.mesh, {b.faces}, options, SlideControls{}, {}, 1);
   const BindSetup two = bind_setup(b.mesh, {b.faces}, options, SlideControls{}, {}, 8);
   ASSERT_EQ(two.patches.size(), one.patches.size());
   for (size_t p = 0; p < one.patches.size(); ++p) {
-    ASSERT_EQ(one.patches[p].solver->method(), FrameNetMethod::Multigrid);
-    EXPECT_EQ(two.patches[p].solver->method(), FrameNetMethod::Multigrid);
+    ASSERT_EQ(test::paper(one).patches[p].solver->method(), FrameNetMethod::Multigrid);
+    EXPECT_EQ(test::paper(two).patches[p].solver->method(), FrameNetMethod::Multigrid);
     EXPECT_EQ(two.patches[p].bind_net, one.patches[p].bind_net);
   }
   const Positions3 frame = bent(b.mesh);
   const FrameResult a = slide_frame(one, frame), c = slide_frame(two, frame);
   for (size_t p = 0; p < one.patches.size(); ++p)
-    EXPECT_EQ(c.patches[p].cg_iterations, a.patches[p].cg_iterations);
+    EXPECT_EQ(test::paper(c.patches[p]).cg_iterations, test::paper(a.patches[p]).cg_iterations);
   EXPECT_EQ(c.slid.vertex, a.slid.vertex);
   EXPECT_EQ(c.slid.position, a.slid.position);
 }
@@ -98,14 +98,14 @@ TEST(BindSetup, MultigridNetsAndSlidFramesAgreeWithCholeskyWithinTheTolerance) {
     const double a = p.x() > 20 ? 0.6 * (p.x() - 20) / 20 : 0.0;
     frame.emplace_back(20 + (p.x() - 20) * std::cos(a), p.y(), (p.x() - 20) * std::sin(a));
   }
-  SlideOptions options = test::paper_options();
+  PaperOptions options;
   options.frame_solver = FrameSolver::Cholesky;
   const BindSetup cholesky = bind_setup(mesh, {faces}, options, SlideControls{}, {}, 1);
   options.frame_solver = FrameSolver::Multigrid;
   const BindSetup multigrid = bind_setup(mesh, {faces}, options, SlideControls{}, {}, 1);
   ASSERT_EQ(multigrid.patches.size(), 1u);
-  EXPECT_EQ(multigrid.patches[0].solver->method(), FrameNetMethod::Multigrid);
-  EXPECT_EQ(cholesky.patches[0].solver->method(), FrameNetMethod::Cholesky);
+  EXPECT_EQ(test::paper(multigrid).patches[0].solver->method(), FrameNetMethod::Multigrid);
+  EXPECT_EQ(test::paper(cholesky).patches[0].solver->method(), FrameNetMethod::Cholesky);
   const Positions2& a = cholesky.patches[0].bind_net;
   const Positions2& b = multigrid.patches[0].bind_net;
   ASSERT_EQ(a.size(), b.size());
@@ -113,8 +113,8 @@ TEST(BindSetup, MultigridNetsAndSlidFramesAgreeWithCholeskyWithinTheTolerance) {
   const FrameResult ra = slide_frame(cholesky, frame), rb = slide_frame(multigrid, frame);
   ASSERT_EQ(ra.slid.vertex, rb.slid.vertex);
   ASSERT_FALSE(ra.slid.vertex.empty());
-  EXPECT_GT(rb.patches[0].cg_iterations, 0);
-  EXPECT_FALSE(rb.patches[0].direct_solve);
+  EXPECT_GT(test::paper(rb.patches[0]).cg_iterations, 0);
+  EXPECT_FALSE(test::paper(rb.patches[0]).direct_solve);
   double moved = 0;
   for (size_t k = 0; k < ra.slid.position.size(); ++k) {
     EXPECT_NEAR((ra.slid.position[k] - rb.slid.position[k]).norm(), 0, 1e-9) << k;

@@ -93,7 +93,8 @@ TEST(SlideWeights, APaintedMaskMovesOnlyWhereItIsPainted) {
   SlideControls controls;
   controls.weight.assign(c.bind.vertex_count(), 0.0);
   for (Index v = 0; v < c.bind.vertex_count(); v += 3) controls.weight[v] = 1.0;
-  const Positions3 out = slid(bind_setup(c.bind, {c.faces}, test::paper_options(), controls), frame);
+  const Positions3 out =
+      slid(bind_setup(c.bind, {c.faces}, test::paper_options(), controls), frame);
   for (Index v = 0; v < c.bind.vertex_count(); ++v)
     EXPECT_EQ(out[v], v % 3 == 0 ? full[v] : frame[v]) << v;
 }
@@ -120,7 +121,7 @@ TEST(Pins, StayAtTheFramePositionWhileTheirNeighboursSlide) {
   SlideControls controls;
   controls.pins = {500, 501, 502, 600, 0 /* outside the patch */, 352 /* on the border */};
   const BindSetup setup = bind_setup(c.bind, {c.faces}, test::paper_options(), controls);
-  const PatchNet& patch = setup.patches.at(0);
+  const Patch& patch = setup.patches.at(0);
   EXPECT_EQ(patch.pinned.size(), 4u);
   EXPECT_EQ(setup.pins_ignored, 2);
   EXPECT_EQ(patch.free_vertices.size(), 288u - 4u);
@@ -201,12 +202,13 @@ TEST(ChosenCorners, PutTheNamedVerticesOnTheSquaresCorners) {
   SlideControls c;
   c.corners = {{1, 9, 23, 15}};
   const BindSetup setup = bind_setup(bind, {test::all_faces(bind)}, test::paper_options(), c);
-  const PatchNet& p = setup.patches.at(0);
-  EXPECT_TRUE(p.corners_chosen);
+  const Patch& p = setup.patches.at(0);
+  const PaperSetup& paper = test::paper(setup).patches.at(0);
+  EXPECT_TRUE(paper.corners_chosen);
   const Vec2 square[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (int j = 0; j < 4; ++j) {
-    EXPECT_EQ(p.vertices[p.corners[j]], c.corners[0][j]);
-    EXPECT_EQ(p.bind_net[p.corners[j]], square[j]);
+    EXPECT_EQ(p.vertices[paper.corners[j]], c.corners[0][j]);
+    EXPECT_EQ(p.bind_net[paper.corners[j]], square[j]);
   }
   EXPECT_EQ(p.bind_net[0], Vec2(0, 0.25));
   // Corners off the mesh's own corners lay two fan triangles, (3,4,9) and (15,21,20), flat along
@@ -251,11 +253,11 @@ TEST(ChosenOuterLoop, TheElbowsOtherEndOnTheSquareSlidesWithoutFolds) {
   controls.outer_loop_vertices = {680};  // on the ring 672..703, the automatic choice is 352..383
   const BindSetup automatic = bind_setup(c.bind, {c.faces}, test::paper_options());
   const BindSetup setup = bind_setup(c.bind, {c.faces}, test::paper_options(), controls);
-  const PatchNet& p = setup.patches.at(0);
+  const Patch& p = setup.patches.at(0);
   EXPECT_TRUE(p.outer_loop_chosen);
   EXPECT_EQ(p.vertices[automatic.patches[0].loops[automatic.patches[0].outer_loop].front()], 352);
   EXPECT_EQ(p.vertices[p.loops[p.outer_loop].front()], 672);
-  EXPECT_EQ(p.vertices[p.corners[0]], 672);
+  EXPECT_EQ(p.vertices[test::paper(setup).patches[0].corners[0]], 672);
   EXPECT_EQ(flipped_triangles(p.bind_net, p.triangles), 0);
   for (const Positions3& frame : c.frames) {
     const FrameResult r = slide_frame(setup, frame);
@@ -278,8 +280,9 @@ TEST(ChosenOuterLoop, AHoleOfASheetCanCarryTheSquare) {
   const PolyMesh bind = test::quad_grid_with_holes(6, 6, {14, 15, 20, 21});  // a 2x2 hole
   SlideControls controls;
   controls.outer_loop_vertices = {16};  // a corner of the hole
-  const BindSetup setup = bind_setup(bind, {test::all_faces(bind)}, test::paper_options(), controls);
-  const PatchNet& p = setup.patches.at(0);
+  const BindSetup setup =
+      bind_setup(bind, {test::all_faces(bind)}, test::paper_options(), controls);
+  const Patch& p = setup.patches.at(0);
   const auto& outer = p.loops[p.outer_loop];
   EXPECT_EQ(outer.size(), 8u);
   const Index local16 = static_cast<Index>(
@@ -297,11 +300,10 @@ TEST(Density, FoldFreeFrameNetsWhereReadmeSaysSo) {
   for (const std::string name : {"elbow", "face"}) {
     const test::Sample c = load_sample(name);
     for (Density d : {Density::Paper, Density::Inverse, Density::Uniform}) {
-      SlideOptions o = test::paper_options();
+      PaperOptions o;
       o.density = d;
       const BindSetup setup = bind_setup(c.bind, {c.faces}, o);
-      for (const PatchNet& p : setup.patches)
-        EXPECT_EQ(flipped_triangles(p.bind_net, p.triangles), 0);
+      for (const Patch& p : setup.patches) EXPECT_EQ(flipped_triangles(p.bind_net, p.triangles), 0);
       int folds_in_bent_frames = 0;
       for (size_t f = 0; f < c.frames.size(); ++f) {
         const FrameResult r = slide_frame(setup, c.frames[f]);
@@ -326,7 +328,7 @@ TEST(Density, FoldFreeFrameNetsWhereReadmeSaysSo) {
 TEST(Spread, PatchReportMatchesADirectComputation) {
   const test::Sample c = load_sample("elbow");
   const BindSetup setup = bind_setup(c.bind, {c.faces}, test::paper_options());
-  const PatchNet& patch = setup.patches[0];
+  const Patch& patch = setup.patches[0];
   auto spread = [&](const Positions3& x) {
     std::vector<double> r;
     for (const auto& [a, b] : patch.bars) {

@@ -25,15 +25,18 @@ constexpr int kLookup = 64;
 constexpr double kAreaTol = 1e-7;   // dump/coverage.h
 constexpr double kFloatTol = 1e-5;  // P is stored as float; |P| ~ 2 here
 
-PatchNet patch_from(const test::TestNet& g, Index first_id, Index id_step, int n) {
-  PatchNet p;
+// A paper's patch from a test net, with the net's corners as the square's.
+Patch patch_from(const test::TestNet& g, Index first_id, Index id_step, int n, PaperMethod& paper) {
+  Patch p;
   for (size_t k = 0; k < g.net.size(); ++k) p.vertices.push_back(first_id + id_step * Index(k));
   p.triangles = g.triangles;
   p.bars = g.bars;
   p.bind_net = g.net;
   p.free_vertices = g.interior;
   const Index m = n + 1;
-  p.corners = {0, n, m * m - 1, m * n};
+  PaperSetup setup;
+  setup.corners = {0, n, m * m - 1, m * n};
+  paper.patches.push_back(setup);
   return p;
 }
 
@@ -47,18 +50,21 @@ struct Scene {
   std::vector<PatchFrameReport> reports;
 
   Scene() {
-    setup.options.lookup_size = kLookup;
-    setup.patches.push_back(patch_from(grid, 100, 2, 4));
-    setup.patches.push_back(patch_from(holed, 1000, 1, 6));
-    PatchNet skipped;
+    PaperMethod paper;
+    setup.patches.push_back(patch_from(grid, 100, 2, 4, paper));
+    setup.patches.push_back(patch_from(holed, 1000, 1, 6, paper));
+    Patch skipped;
     skipped.skipped = true;
     skipped.vertices = {5, 6, 7};
     setup.patches.push_back(skipped);
+    paper.patches.emplace_back();
+    setup.method = paper;
     setup.vertex_count = 1100;
     bind_positions.assign(1100, Vec3::Zero());
     frame_positions.assign(1100, Vec3::Zero());
-    for (const PatchNet& p : setup.patches) {
+    for (const Patch& p : setup.patches) {
       PatchFrameReport r;
+      r.method = PaperReport{};
       if (!p.skipped) {
         const Positions3 b = test::bent(p.bind_net);
         r.frame_net = p.bind_net;
@@ -76,13 +82,14 @@ struct Scene {
     }
   }
 
-  Positions3 local(const PatchNet& p, const Positions3& all) const {
+  Positions3 local(const Patch& p, const Positions3& all) const {
     Positions3 out;
     for (Index v : p.vertices) out.push_back(all[v]);
     return out;
   }
 
-  void write(const std::string& dir, const DumpOptions& options = {}) const {
+  void write(const std::string& dir, DumpOptions options = {}) const {
+    options.id_image_size = kLookup;
     write_bind_dumps(dir, "in/bind.obj", setup, bind_positions, options);
     write_frame_dumps(dir, "frames/f0007.obj", setup, frame_positions, reports, options);
     write_previews(dir + "/preview", "frames/f0007.obj", setup, reports, options);
@@ -157,7 +164,7 @@ TEST(Dumps, ImagesMatchTheNetsTheyShow) {
   test::TempDir dir("dumps_properties");
   s.write(dir.path().string());
   for (int k = 0; k < 2; ++k) {
-    const PatchNet& p = s.setup.patches[k];
+    const Patch& p = s.setup.patches[k];
     for (const std::string stem : {"bind", "f0007"}) {
       SCOPED_TRACE(stem + " patch " + std::to_string(k));
       const bool frame = stem != "bind";
@@ -285,11 +292,12 @@ TEST(Dumps, FrameWithoutItsIdImageIsAnInternalError) {
   s.reports[0].id_image = IdImage{};
   test::TempDir dir("dumps_no_id");
   try {
-    write_frame_dumps(dir.path().string(), "f.obj", s.setup, s.frame_positions, s.reports);
+    write_frame_dumps(dir.path().string(), "f.obj", s.setup, s.frame_positions, s.reports,
+                      {.id_image_size = kLookup});
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Internal);
-    EXPECT_NE(std::string(e.what()).find("id_image = true"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("id_image_size"), std::string::npos) << e.what();
   }
 }
 
@@ -298,7 +306,8 @@ TEST(Dumps, UnwritableFolderIsAnOutputError) {
   test::TempDir dir("dumps_unwritable");
   write_file_atomic(dir / "file", "x");
   try {
-    write_bind_dumps(dir / "file/sub", "bind.obj", s.setup, s.bind_positions);
+    write_bind_dumps(dir / "file/sub", "bind.obj", s.setup, s.bind_positions,
+                     {.id_image_size = kLookup});
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Output);

@@ -91,7 +91,7 @@ TEST_P(RigSlide, EveryFrameKeepsTheBorderStaysOnTheSurfaceAndEvensTheStretch) {
   std::set<Index> free_vertices, fixed_vertices;
   std::set<Index> patch_faces(faces.begin(), faces.end());
   size_t free_count = 0;
-  for (const PatchNet& p : setup.patches) {
+  for (const Patch& p : setup.patches) {
     for (Index v : p.free_vertices) free_vertices.insert(p.vertices[v]);
     for (const auto& loop : p.loops)
       for (Index v : loop) fixed_vertices.insert(p.vertices[v]);
@@ -117,7 +117,7 @@ TEST_P(RigSlide, EveryFrameKeepsTheBorderStaysOnTheSurfaceAndEvensTheStretch) {
       if (free_vertices.count(v)) continue;
       ASSERT_EQ(out[v], frame.mesh.positions[v]) << v;
     }
-    for (const PatchNet& p : setup.patches) {
+    for (const Patch& p : setup.patches) {
       const double before = edge_log_spread(p, character.mesh.positions, frame.mesh.positions);
       const double after = edge_log_spread(p, character.mesh.positions, out);
       if (before < 1e-3) continue;  // (nearly) the rest pose: nothing to even out

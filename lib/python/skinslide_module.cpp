@@ -1,0 +1,358 @@
+// The Python module `skinslide` (pybind11): skinslide.h's set-up and slide on numpy arrays, the
+// file readers, and skinslide::Error as Python exceptions. lib/python/README.md is its manual.
+//
+// Arrays: float64 positions are used in place when C-contiguous (else converted once); a slide
+// writes straight into the numpy array it returns. The GIL is released while setting up and
+// sliding, so a thread pool slides frames in parallel with the bits of a serial run.
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "core/version.h"
+#include "io/mesh_file.h"
+#include "io/patch_file.h"
+#include "io/vertex_list.h"
+#include "skinslide.h"
+
+namespace py = pybind11;
+using namespace skinslide;
+
+namespace {
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using IndexArray = py::array_t<Index, py::array::c_style | py::array::forcecast>;
+
+// ---- Errors -----------------------------------------------------------------------------------
+
+// skinslide.Error and one subclass per ErrorKind, each with a `kind` class attribute. Created
+// once with the module and kept for the interpreter's life.
+struct ErrorClasses {
+  PyObject* base = nullptr;
+  std::map<ErrorKind, PyObject*> by_kind;
+};
+ErrorClasses& error_classes() {
+  static ErrorClasses classes;
+  return classes;
+}
+
+void add_errors(py::module_& m) {
+  ErrorClasses& c = error_classes();
+  c.base = PyErr_NewExceptionWithDoc(
+      "skinslide.Error",
+      "A skinslide error: str(e) says what was wrong (and where); e.kind is 'usage', 'input', "
+      "'output', 'numeric' or 'internal', as the command line's exit codes 2, 3, 4, 5 and 1.",
+      PyExc_Exception, nullptr);
+  m.add_object("Error", py::handle(c.base));
+  const std::pair<ErrorKind, const char*> kinds[] = {{ErrorKind::Usage, "usage"},
+                                                     {ErrorKind::Input, "input"},
+                                                     {ErrorKind::Output, "output"},
+                                                     {ErrorKind::Numeric, "numeric"},
+                                                     {ErrorKind::Internal, "internal"}};
+  for (const auto& [kind, word] : kinds) {
+    std::string name = word;
+    name[0] = static_cast<char>(name[0] - 'a' + 'A');
+    name += "Error";
+    PyObject* cls = PyErr_NewException(("skinslide." + name).c_str(), c.base, nullptr);
+    py::setattr(cls, "kind", py::str(word));
+    m.add_object(name.c_str(), py::handle(cls));
+    c.by_kind[kind] = cls;
+  }
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      PyErr_SetString(error_classes().by_kind.at(e.kind()), e.what());
+    }
+  });
+}
+
+[[noreturn]] void usage(const std::string& what) { throw Error(ErrorKind::Usage, what); }
+
+// ---- Arguments --------------------------------------------------------------------------------
+
+// A (#V, 3) float64 array.
+DoubleArray points(const py::handle& object, const char* name) {
+  DoubleArray a = DoubleArray::ensure(object);
+  if (!a || a.ndim() != 2 || a.shape(1) != 3)
+    usage(std::string(name) + " must be an array of shape (vertices, 3)");
+  return a;
+}
+
+std::vector<Index> indices(const py::handle& object, const char* name) {
+  IndexArray a = IndexArray::ensure(object);
+  if (!a || a.ndim() != 1) usage(std::string(name) + " must be a 1-D array of integers");
+  return std::vector<Index>(a.data(), a.data() + a.size());
+}
+
+// Faces: a (faces, corners) integer array; with face_sizes, the flat vertex list; else a
+// sequence of polygons.
+void read_faces(const py::handle& faces, const py::object& face_sizes,
+                std::vector<Index>& face_vertices, std::vector<Index>& sizes) {
+  if (!face_sizes.is_none()) {
+    face_vertices = indices(faces, "faces (with face_sizes)");
+    sizes = indices(face_sizes, "face_sizes");
+    return;
+  }
+  if (py::isinstance<py::array>(faces) &&
+      py::array(py::reinterpret_borrow<py::array>(faces)).ndim() == 2) {
+    IndexArray a = IndexArray::ensure(faces);
+    if (!a) usage("faces must hold integers");
+    face_vertices.assign(a.data(), a.data() + a.size());
+    sizes.assign(static_cast<size_t>(a.shape(0)), static_cast<Index>(a.shape(1)));
+    return;
+  }
+  for (const py::handle polygon : faces) {
+    const std::vector<Index> ids = indices(polygon, "each face");
+    face_vertices.insert(face_vertices.end(), ids.begin(), ids.end());
+    sizes.push_back(static_cast<Index>(ids.size()));
+  }
+}
+
+// Patches: one selection (a sequence of face ids) or several (a sequence of such).
+std::vector<std::vector<Index>> read_patches(const py::handle& patches) {
+  const bool one = py::isinstance<py::array>(patches) || py::len(patches) == 0 ||
+                   !(py::isinstance<py::sequence>(patches[py::int_(0)]) ||
+                     py::isinstance<py::array>(patches[py::int_(0)]));
+  if (one) return {indices(patches, "patches")};
+  std::vector<std::vector<Index>> out;
+  for (const py::handle p : patches) out.push_back(indices(p, "each patch"));
+  return out;
+}
+
+// options[key] as a T (removed from `options`), or `value` when absent.
+template <class T>
+T take(py::dict& options, const char* key, T value) {
+  if (!options.contains(key)) return value;
+  try {
+    value = options[key].cast<T>();
+  } catch (const py::cast_error&) {
+    usage(std::string(key) + " must be " +
+          (std::is_same_v<T, std::string> ? "a string"
+           : std::is_same_v<T, double>    ? "a number"
+                                          : "an integer"));
+  }
+  PyDict_DelItemString(options.ptr(), key);
+  return value;
+}
+
+// The method and its options from keyword arguments; what is left over is refused, by name.
+SlideOptions slide_options(const std::string& method, py::dict options) {
+  SlideOptions out = parse_method(method);
+  if (auto* e = std::get_if<ElasticOptions>(&out)) {
+    e->rotation_fits = take(options, "rotation_fits", e->rotation_fits);
+    e->max_iterations = take(options, "max_iterations", e->max_iterations);
+    e->tolerance = take(options, "tolerance", e->tolerance);
+  } else {
+    PaperOptions& p = std::get<PaperOptions>(out);
+    p.density = parse_density(take(options, "density", to_string(p.density)));
+    p.holes = parse_holes(take(options, "holes", to_string(p.holes)));
+    p.q_floor = take(options, "q_floor", p.q_floor);
+    p.frame_solver = parse_frame_solver(take(options, "frame_solver", to_string(p.frame_solver)));
+    p.cg_tolerance = take(options, "cg_tolerance", p.cg_tolerance);
+    p.cg_max_iterations = take(options, "cg_max_iterations", p.cg_max_iterations);
+    p.locate = parse_locate(take(options, "locate", to_string(p.locate)));
+    p.lookup_size = take(options, "lookup_size", p.lookup_size);
+  }
+  // What is left is the other method's or nobody's.
+  const char* const other_method[] = {
+      "rotation_fits", "max_iterations", "tolerance",         "density", "holes",      "q_floor",
+      "frame_solver",  "cg_tolerance",   "cg_max_iterations", "locate",  "lookup_size"};
+  const std::string other = method == "paper" ? "elastic" : "paper";
+  for (const auto& item : options) {
+    const std::string name = py::str(item.first);
+    for (const char* known : other_method)
+      if (name == known)
+        usage(name + " applies to method '" + other + "' only, not to method '" + method + "'");
+    usage("unknown option " + name);
+  }
+  return out;
+}
+
+// ---- Reports ----------------------------------------------------------------------------------
+
+py::dict figures_dict(const Figures& figures) {
+  py::dict d;
+  for (const Figure& f : figures)
+    std::visit([&](const auto& v) { d[f.key.c_str()] = py::cast(v); }, f.value);
+  return d;
+}
+
+// The frame's report: per patch its figures (the --report JSON's), and the totals.
+py::dict frame_report(const std::vector<PatchFrameReport>& patches, bool edge_spread) {
+  py::list list;
+  long long moved = 0;
+  double max_slide = 0;
+  for (const PatchFrameReport& r : patches) {
+    Figures figures = frame_figures(r);
+    if (!edge_spread)  // not computed
+      std::erase_if(figures, [](const Figure& f) { return f.key.starts_with("spread_"); });
+    list.append(figures_dict(figures));
+    moved += r.moved;
+    max_slide = std::max(max_slide, r.max_slide);
+  }
+  py::dict d;
+  d["patches"] = list;
+  d["moved"] = moved;
+  d["max_slide"] = max_slide;
+  return d;
+}
+
+// ---- The slider -------------------------------------------------------------------------------
+
+// A bind set-up, built once, immutable, slid from any thread.
+class Slider {
+ public:
+  Slider(const py::handle& bind, const py::handle& faces, const py::handle& patches,
+         const std::string& method, const py::object& pins, const py::object& weights,
+         double strength, const py::object& corners, const py::object& outer_loop_vertices,
+         const py::object& face_sizes, unsigned threads, const py::kwargs& options) {
+    const DoubleArray positions = points(bind, "bind");
+    std::vector<Index> face_vertices, sizes;
+    read_faces(faces, face_sizes, face_vertices, sizes);
+    const std::vector<std::vector<Index>> selections = read_patches(patches);
+    const SlideOptions slide = slide_options(method, py::dict(options));
+    SlideControls controls;
+    if (!pins.is_none()) controls.pins = indices(pins, "pins");
+    if (!weights.is_none()) {
+      const DoubleArray w = DoubleArray::ensure(weights);
+      if (!w || w.ndim() != 1) usage("weights must be a 1-D array, one weight a vertex");
+      controls.weight.assign(w.data(), w.data() + w.size());
+    }
+    controls.strength = strength;
+    if (!corners.is_none())
+      for (const py::handle c : corners) {
+        const std::vector<Index> four = indices(c, "each corners entry");
+        if (four.size() != 4) usage("each corners entry must name four vertex ids");
+        controls.corners.push_back({four[0], four[1], four[2], four[3]});
+      }
+    if (!outer_loop_vertices.is_none())
+      controls.outer_loop_vertices = indices(outer_loop_vertices, "outer_loop_vertices");
+    const Bind arrays{
+        {positions.data(), static_cast<size_t>(positions.size())}, face_vertices, sizes};
+    py::gil_scoped_release released;
+    setup_ = std::make_shared<const BindSetup>(
+        set_up(arrays, selections, slide, controls, std::max(threads, 1u)));
+  }
+
+  py::tuple slide(const py::handle& frame, bool edge_spread) const {
+    const DoubleArray in = points(frame, "frame");
+    DoubleArray out({static_cast<py::ssize_t>(in.shape(0)), py::ssize_t{3}});
+    const std::span<const double> xyz(in.data(), static_cast<size_t>(in.size()));
+    const std::span<double> result(out.mutable_data(), static_cast<size_t>(out.size()));
+    std::vector<PatchFrameReport> report;
+    {
+      py::gil_scoped_release released;
+      report = skinslide::slide(*setup_, xyz, result, edge_spread);
+    }
+    return py::make_tuple(out, frame_report(report, edge_spread));
+  }
+
+  Index vertex_count() const { return setup_->vertex_count; }
+  std::string method() const { return method_name(method_options(setup_->method)); }
+  py::dict options() const { return figures_dict(option_figures(setup_->method)); }
+  py::list patches() const {
+    py::list list;
+    for (size_t p = 0; p < setup_->patches.size(); ++p)
+      list.append(figures_dict(patch_figures(setup_->method, p, setup_->patches[p])));
+    return list;
+  }
+
+ private:
+  std::shared_ptr<const BindSetup> setup_;
+};
+
+// ---- File formats -----------------------------------------------------------------------------
+
+py::tuple read_mesh(const std::string& path, const std::string& mesh) {
+  MeshFile file;
+  {
+    py::gil_scoped_release released;
+    file = read_mesh_file(path, {mesh});
+  }
+  const PolyMesh& m = file.mesh;
+  DoubleArray positions({static_cast<py::ssize_t>(m.vertex_count()), py::ssize_t{3}});
+  double* p = positions.mutable_data();
+  for (const Vec3& v : m.positions) p = std::copy(v.data(), v.data() + 3, p);
+  IndexArray sizes(static_cast<py::ssize_t>(m.face_count()));
+  for (Index f = 0; f < m.face_count(); ++f) sizes.mutable_data()[f] = m.face_size(f);
+  IndexArray face_vertices(static_cast<py::ssize_t>(m.face_vertices.size()));
+  std::copy(m.face_vertices.begin(), m.face_vertices.end(), face_vertices.mutable_data());
+  return py::make_tuple(positions, face_vertices, sizes);
+}
+
+IndexArray index_array(const std::vector<Index>& ids) {
+  IndexArray a(static_cast<py::ssize_t>(ids.size()));
+  std::copy(ids.begin(), ids.end(), a.mutable_data());
+  return a;
+}
+
+constexpr Index kNoLimit = INT32_MAX;  // ids checked against nothing but Index's own range
+
+}  // namespace
+
+PYBIND11_MODULE(skinslide, m) {
+  m.doc() = "skin sliding for deformed character meshes (lib/python/README.md)";
+  m.attr("__version__") = version();
+  add_errors(m);
+  py::class_<Slider>(m, "Slider",
+                     "A bind set-up: Slider(bind, faces, patches, *, method='elastic', pins=None, "
+                     "weights=None, **options); slide(frame) -> (positions, report).")
+      .def(py::init<const py::handle&, const py::handle&, const py::handle&, const std::string&,
+                    const py::object&, const py::object&, double, const py::object&,
+                    const py::object&, const py::object&, unsigned, const py::kwargs&>(),
+           py::arg("bind"), py::arg("faces"), py::arg("patches"), py::kw_only(),
+           py::arg("method") = method_name(SlideOptions{}), py::arg("pins") = py::none(),
+           py::arg("weights") = py::none(), py::arg("strength") = SlideControls{}.strength,
+           py::arg("corners") = py::none(), py::arg("outer_loop_vertices") = py::none(),
+           py::arg("face_sizes") = py::none(), py::arg("threads") = 1u)
+      .def("slide", &Slider::slide, py::arg("frame"), py::kw_only(), py::arg("edge_spread") = false,
+           "Slides one frame ((vertices, 3) float64): returns (positions, report). Releases "
+           "the GIL: frames may be slid from several threads at once. edge_spread: report each "
+           "patch's edge-length spread in the frame and slid (about 5% more time).")
+      .def_property_readonly("vertex_count", &Slider::vertex_count)
+      .def_property_readonly("method", &Slider::method)
+      .def_property_readonly("options", &Slider::options)
+      .def_property_readonly("patches", &Slider::patches);
+  m.def(
+      "default_options",
+      [](const std::string& method) {
+        return figures_dict(option_figures(method_setup(parse_method(method), 0)));
+      },
+      py::arg("method") = method_name(SlideOptions{}),
+      "The method's options with their defaults, as Slider takes them (and 'method').");
+  m.def("read_mesh", &read_mesh, py::arg("path"), py::arg("mesh") = "",
+        "Reads an .obj, .gltf or .glb mesh: (positions (V, 3), face_vertices, face_sizes), ids "
+        "as skinslide numbers them (glTF: welded vertices, triangles in primitive order).");
+  m.def(
+      "read_patch",
+      [](const std::string& path, std::optional<Index> face_count) {
+        return index_array(selected_faces(read_patch(path), face_count.value_or(kNoLimit)));
+      },
+      py::arg("path"), py::arg("face_count") = py::none(),
+      "A patch file's face ids, ascending (checked against face_count when given).");
+  m.def(
+      "read_weights",
+      [](const std::string& path, Index vertex_count) {
+        const std::vector<double> w = read_weights(path, vertex_count);
+        DoubleArray a(static_cast<py::ssize_t>(w.size()));
+        std::copy(w.begin(), w.end(), a.mutable_data());
+        return a;
+      },
+      py::arg("path"), py::arg("vertex_count"), "A slide-weight file: one weight a vertex.");
+  m.def(
+      "read_pins",
+      [](const std::string& path, Index vertex_count) {
+        return index_array(read_vertex_list(path, vertex_count));
+      },
+      py::arg("path"), py::arg("vertex_count"), "A pin (vertex-id list) file's ids, ascending.");
+}

@@ -1,0 +1,136 @@
+#include "skinslide.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "io/number_format.h"
+
+namespace skinslide {
+namespace {
+
+// Positions are handed on in place: a Vec3 is three doubles, with a double's alignment.
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && alignof(Vec3) == alignof(double));
+
+std::span<const Vec3> as_points(std::span<const double> xyz) {
+  return {reinterpret_cast<const Vec3*>(xyz.data()), xyz.size() / 3};
+}
+
+PolyMesh poly_mesh(const Bind& bind) {
+  if (bind.positions.size() % 3 != 0)
+    throw Error(ErrorKind::Input, "the bind has " + std::to_string(bind.positions.size()) +
+                                      " coordinates, not 3 per vertex");
+  PolyMesh mesh;
+  const std::span<const Vec3> points = as_points(bind.positions);
+  mesh.positions.assign(points.begin(), points.end());
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    if (!mesh.positions[v].allFinite())
+      throw Error(ErrorKind::Input, "bind vertex " + std::to_string(v) + " is not finite");
+  const Index vertex_count = mesh.vertex_count();
+  const bool triangles = bind.face_sizes.empty();
+  if (triangles && bind.face_vertices.size() % 3 != 0)
+    throw Error(ErrorKind::Input, "the faces have " + std::to_string(bind.face_vertices.size()) +
+                                      " vertex ids, not 3 per triangle");
+  const size_t face_count = triangles ? bind.face_vertices.size() / 3 : bind.face_sizes.size();
+  size_t at = 0;
+  std::vector<Index> face;
+  for (size_t f = 0; f < face_count; ++f) {
+    const Index size = triangles ? 3 : bind.face_sizes[f];
+    if (size < 3 || at + static_cast<size_t>(size) > bind.face_vertices.size())
+      throw Error(ErrorKind::Input, "face " + std::to_string(f) + " has " + std::to_string(size) +
+                                        " corners" +
+                                        (size < 3 ? "" : ", past the end of the face list"));
+    face.assign(bind.face_vertices.begin() + at, bind.face_vertices.begin() + at + size);
+    for (Index v : face)
+      if (v < 0 || v >= vertex_count)
+        throw Error(ErrorKind::Input, "face " + std::to_string(f) + ": vertex " +
+                                          std::to_string(v) + " is out of range (the bind has " +
+                                          std::to_string(vertex_count) + " vertices)");
+    mesh.add_face(face);
+    at += static_cast<size_t>(size);
+  }
+  if (at != bind.face_vertices.size())
+    throw Error(ErrorKind::Input, "the face sizes add up to " + std::to_string(at) +
+                                      " corners; the face list has " +
+                                      std::to_string(bind.face_vertices.size()));
+  return mesh;
+}
+
+std::vector<std::vector<Index>> selections(const std::vector<std::vector<Index>>& patches,
+                                           Index face_count) {
+  std::vector<std::vector<Index>> out;
+  for (size_t s = 0; s < patches.size(); ++s) {
+    std::vector<Index> faces = patches[s];
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    if (faces.empty()) throw Error(ErrorKind::Input, "patch " + std::to_string(s) + " is empty");
+    if (faces.front() < 0 || faces.back() >= face_count)
+      throw Error(ErrorKind::Input,
+                  "patch " + std::to_string(s) + ": face " +
+                      std::to_string(faces.front() < 0 ? faces.front() : faces.back()) +
+                      " is out of range (the bind has " + std::to_string(face_count) + " faces)");
+    out.push_back(std::move(faces));
+  }
+  return out;
+}
+
+template <class T>
+void check_range(const char* name, T value, T low, T high) {
+  if (!(value >= low && value <= high))  // NaN fails too
+    throw Error(ErrorKind::Usage, std::string(name) + " = " + format_double(double(value)) +
+                                      " is outside [" + format_double(double(low)) + ", " +
+                                      format_double(double(high)) + "]");
+}
+
+void check_span(std::span<const double> xyz, Index vertex_count, const char* what) {
+  if (xyz.size() != 3 * static_cast<size_t>(vertex_count))
+    throw Error(ErrorKind::Input, std::string(what) + " has " + std::to_string(xyz.size()) +
+                                      " coordinates; the bind has " + std::to_string(vertex_count) +
+                                      " vertices (x y z each)");
+}
+
+}  // namespace
+
+// The ranges are the command line's (cli/command_line.cpp), which CLI11 checks itself there.
+void check_options(const SlideOptions& options) {
+  if (const auto* e = std::get_if<ElasticOptions>(&options)) {
+    check_range("rotation_fits", e->rotation_fits, 1, 1000);
+    check_range("max_iterations", e->max_iterations, 0, 100000);
+    check_range("tolerance", e->tolerance, 0.0, 1.0);
+    return;
+  }
+  const PaperOptions& p = std::get<PaperOptions>(options);
+  check_range("q_floor", p.q_floor, 1e-12, 1.0);
+  check_range("cg_tolerance", p.cg_tolerance, 1e-16, 1e-2);
+  check_range("cg_max_iterations", p.cg_max_iterations, 1, 1000000);
+  check_range("lookup_size", p.lookup_size, 8, 16384);
+}
+
+BindSetup set_up(const Bind& bind, const std::vector<std::vector<Index>>& patches,
+                 const SlideOptions& options, const SlideControls& controls, unsigned threads) {
+  check_options(options);
+  const PolyMesh mesh = poly_mesh(bind);
+  return bind_setup(mesh, selections(patches, mesh.face_count()), options, controls, {}, threads);
+}
+
+std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const double> frame,
+                                    std::span<double> out, bool edge_spread) {
+  check_span(frame, setup.vertex_count, "the frame");
+  check_span(out, setup.vertex_count, "the output");
+  for (size_t k = 0; k < frame.size(); ++k)
+    if (!std::isfinite(frame[k]))
+      throw Error(ErrorKind::Input, "frame vertex " + std::to_string(k / 3) + " is not finite");
+  FrameResult result = slide_frame(setup, as_points(frame), {.edge_spread = edge_spread});
+  std::copy(frame.begin(), frame.end(), out.begin());
+  for (size_t k = 0; k < result.slid.vertex.size(); ++k) {
+    const Vec3& p = result.slid.position[k];
+    double* xyz = out.data() + 3 * static_cast<size_t>(result.slid.vertex[k]);
+    xyz[0] = p.x();
+    xyz[1] = p.y();
+    xyz[2] = p.z();
+  }
+  for (PatchFrameReport& r : result.patches) r.frame_net = {};  // the nets are dumps' business
+  return std::move(result.patches);
+}
+
+}  // namespace skinslide

@@ -1,0 +1,314 @@
+"""skinslide in Blender: slides the skin of a deformed mesh (armature, shape keys, any modifier)
+over a frame range and bakes the result as shape keys of a copy that plays it back.
+
+The slide is the skinslide Python module's (lib/python), the same bits as the command line on
+the positions Blender evaluates. Install: scripts/blender/README.md.
+"""
+
+bl_info = {
+    "name": "skinslide",
+    "author": "skinslide",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "Properties > Object > Skin Slide",
+    "description": "Slide the skin of a deformed mesh and bake it as shape keys",
+    "category": "Animation",
+}
+
+import concurrent.futures
+import os
+import sys
+
+import bpy
+import numpy as np
+
+# Where the module is looked for when `import skinslide` alone fails: SKINSLIDE_PYTHONPATH, then
+# the add-on's own folder (a copy of build/python/skinslide*.so put beside this file).
+for _folder in (os.environ.get("SKINSLIDE_PYTHONPATH", ""), os.path.dirname(__file__)):
+    if _folder and _folder not in sys.path:
+        sys.path.append(_folder)
+try:
+    import skinslide
+except ImportError:  # the panel says so; the operator refuses to run
+    skinslide = None
+
+SLID_SUFFIX = " slid"     # the baked copy is named after the object
+KEY_PREFIX = "skinslide"  # its shape keys: skinslide.0001, ...
+
+
+# ---- Settings -----------------------------------------------------------------------------------
+
+def _defaults(method):
+    """The library's own option defaults (none repeated here)."""
+    if skinslide is None:
+        return {}
+    return skinslide.default_options(method)
+
+
+_ELASTIC = _defaults("elastic")
+_PAPER = _defaults("paper")
+
+
+def _group_items(self, context):
+    obj = context.object
+    names = [g.name for g in obj.vertex_groups] if obj else []
+    return [("", "(none)", "")] + [(n, n, "") for n in names]
+
+
+class SkinslideSettings(bpy.types.PropertyGroup):
+    patch_source: bpy.props.EnumProperty(
+        name="Patch", description="Which faces slide",
+        items=[("SELECTION", "Face selection", "The faces selected in Edit Mode"),
+               ("FACE_MAP", "Face map", "The faces of a face map"),
+               ("VERTEX_GROUP", "Vertex group", "The faces whose every corner is in the group")])
+    patch_face_map: bpy.props.StringProperty(name="Face map")
+    patch_group: bpy.props.StringProperty(name="Patch group")
+    pin_group: bpy.props.StringProperty(
+        name="Pins", description="Vertices of this group do not slide; the skin around them does")
+    weight_group: bpy.props.StringProperty(
+        name="Weights", description="Slide weight per vertex (0 stays, 1 slides); none: 1")
+    strength: bpy.props.FloatProperty(name="Strength", default=1.0, min=0.0, soft_max=1.0,
+                                      description="Multiplies every slide weight")
+    method: bpy.props.EnumProperty(
+        name="Method",
+        items=[("elastic", "Elastic", "Relax in a fixed chart of the patch (the default)"),
+               ("paper", "Paper", "Yang & Zhang's bar nets")])
+    rotation_fits: bpy.props.IntProperty(name="Rotation fits", min=1, max=1000,
+                                         default=_ELASTIC.get("rotation_fits", 1))
+    max_iterations: bpy.props.IntProperty(name="Max iterations", min=0, max=100000,
+                                          default=_ELASTIC.get("max_iterations", 0))
+    tolerance: bpy.props.FloatProperty(name="Tolerance", min=0.0, max=1.0, precision=6,
+                                       default=_ELASTIC.get("tolerance", 0.0))
+    density: bpy.props.EnumProperty(
+        name="Density", default=_PAPER.get("density", "inverse"),
+        items=[(d, d.capitalize(), "") for d in ("inverse", "uniform", "paper")])
+    holes: bpy.props.EnumProperty(name="Holes", default=_PAPER.get("holes", "fill"),
+                                  items=[(h, h.capitalize(), "") for h in ("fill", "free")])
+    frame_start: bpy.props.IntProperty(name="Start", default=1)
+    frame_end: bpy.props.IntProperty(name="End", default=250)
+    use_scene_range: bpy.props.BoolProperty(name="Scene range", default=True)
+
+
+def slider_options(s):
+    """The Slider keyword options of the settings `s`."""
+    if s.method == "elastic":
+        return {"rotation_fits": s.rotation_fits, "max_iterations": s.max_iterations,
+                "tolerance": s.tolerance}
+    return {"density": s.density, "holes": s.holes}
+
+
+# ---- The bake ---------------------------------------------------------------------------------
+
+def mesh_arrays(mesh):
+    """Positions (V, 3) float64, and faces as a flat vertex list with sizes."""
+    positions = np.empty(3 * len(mesh.vertices), dtype=np.float32)
+    mesh.vertices.foreach_get("co", positions)
+    face_vertices = np.empty(len(mesh.loops), dtype=np.int32)
+    mesh.polygons.foreach_get("vertices", face_vertices)
+    face_sizes = np.empty(len(mesh.polygons), dtype=np.int32)
+    mesh.polygons.foreach_get("loop_total", face_sizes)
+    return positions.reshape(-1, 3).astype(np.float64), face_vertices, face_sizes
+
+
+def group_weights(obj, name):
+    """Per vertex its weight in vertex group `name` (0 where not in it)."""
+    index = obj.vertex_groups[name].index
+    weights = np.zeros(len(obj.data.vertices))
+    for v in obj.data.vertices:
+        for g in v.groups:
+            if g.group == index:
+                weights[v.index] = g.weight
+    return weights
+
+
+def patch_faces(obj, s):
+    """The face ids that slide, by the settings' patch source."""
+    mesh = obj.data
+    if s.patch_source == "SELECTION":
+        selected = np.zeros(len(mesh.polygons), dtype=bool)
+        mesh.polygons.foreach_get("select", selected)
+        return np.flatnonzero(selected)
+    if s.patch_source == "FACE_MAP":
+        face_map = obj.face_maps.get(s.patch_face_map)
+        if face_map is None or not mesh.face_maps:
+            raise ValueError(f"no face map named '{s.patch_face_map}'")
+        values = np.array([d.value for d in mesh.face_maps[0].data])
+        return np.flatnonzero(values == face_map.index)
+    if s.patch_group not in obj.vertex_groups:
+        raise ValueError(f"no vertex group named '{s.patch_group}'")
+    inside = group_weights(obj, s.patch_group) > 0
+    return np.array([p.index for p in mesh.polygons if all(inside[v] for v in p.vertices)],
+                    dtype=np.int32)
+
+
+def make_slider(obj, s):
+    positions, face_vertices, face_sizes = mesh_arrays(obj.data)
+    faces = patch_faces(obj, s)
+    if len(faces) == 0:
+        raise ValueError("the patch has no faces: select some, or choose a face map or group")
+    controls = {"strength": s.strength}
+    if s.pin_group:
+        controls["pins"] = np.flatnonzero(group_weights(obj, s.pin_group) > 0)
+    if s.weight_group:
+        controls["weights"] = np.clip(group_weights(obj, s.weight_group), 0.0, 1.0)
+    return skinslide.Slider(positions, face_vertices, faces, face_sizes=face_sizes,
+                            method=s.method, threads=os.cpu_count() or 1,
+                            **controls, **slider_options(s))
+
+
+def evaluated_positions(obj, depsgraph, vertex_count):
+    """The object's mesh as the depsgraph evaluates it (armature, shape keys, modifiers)."""
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        if len(mesh.vertices) != vertex_count:
+            raise ValueError(f"a modifier changes the vertex count ({vertex_count} -> "
+                             f"{len(mesh.vertices)}): skinslide needs the mesh's own vertices")
+        co = np.empty(3 * vertex_count, dtype=np.float32)
+        mesh.vertices.foreach_get("co", co)
+    finally:
+        evaluated.to_mesh_clear()
+    return co.reshape(-1, 3).astype(np.float64)
+
+
+def baked_copy(context, obj):
+    """A copy of the object's undeformed mesh, without modifiers, for the shape keys: replaced
+    when it exists."""
+    name = obj.name + SLID_SUFFIX
+    old = bpy.data.objects.get(name)
+    if old is not None:
+        bpy.data.objects.remove(old)
+    mesh = obj.data.copy()
+    mesh.name = name
+    copy = bpy.data.objects.new(name, mesh)
+    context.collection.objects.link(copy)
+    if mesh.shape_keys:  # the source's keys pose the source; the copy plays back the slide
+        copy.shape_key_clear()
+    copy.matrix_world = obj.matrix_world.copy()
+    return copy
+
+
+def write_shape_keys(copy, frames, slid):
+    """One shape key per frame, value 1 on its frame and 0 on the frames beside it."""
+    copy.shape_key_add(name="Basis", from_mix=False)
+    for frame, positions in zip(frames, slid):
+        key = copy.shape_key_add(name=f"{KEY_PREFIX}.{frame:04d}", from_mix=False)
+        key.data.foreach_set("co", positions.astype(np.float32).ravel())
+        for f, value in ((frame - 1, 0.0), (frame, 1.0), (frame + 1, 0.0)):
+            key.value = value
+            key.keyframe_insert("value", frame=f)
+
+
+class SKINSLIDE_OT_bake(bpy.types.Operator):
+    """Slide the skin of the active mesh over the frame range and bake it as shape keys of a
+    copy named '<object> slid'"""
+    bl_idname = "object.skinslide_bake"
+    bl_label = "Bake skin slide"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.object is not None and context.object.type == "MESH"
+
+    def execute(self, context):
+        if skinslide is None:
+            self.report({"ERROR"}, "the skinslide module cannot be imported: see "
+                                   "scripts/blender/README.md")
+            return {"CANCELLED"}
+        obj = context.object
+        s = obj.skinslide
+        scene = context.scene
+        first, last = ((scene.frame_start, scene.frame_end) if s.use_scene_range
+                       else (s.frame_start, s.frame_end))
+        frames = list(range(first, last + 1))
+        if obj.mode == "EDIT":  # the face selection is the mesh's once out of Edit Mode
+            bpy.ops.object.mode_set(mode="OBJECT")
+        wm = context.window_manager
+        wm.progress_begin(0, 2 * len(frames))
+        current = scene.frame_current
+        try:
+            slider = make_slider(obj, s)
+            poses = []
+            for k, frame in enumerate(frames):
+                scene.frame_set(frame)
+                poses.append(evaluated_positions(obj, context.evaluated_depsgraph_get(),
+                                                 slider.vertex_count))
+                wm.progress_update(k + 1)
+            # The module releases the GIL: frames slide on every core, each to the bits of a
+            # serial slide.
+            slid = [None] * len(frames)
+            with concurrent.futures.ThreadPoolExecutor(os.cpu_count() or 1) as pool:
+                jobs = {pool.submit(slider.slide, pose): k for k, pose in enumerate(poses)}
+                for done, job in enumerate(concurrent.futures.as_completed(jobs)):
+                    slid[jobs[job]] = job.result()[0]
+                    wm.progress_update(len(frames) + done + 1)
+            write_shape_keys(baked_copy(context, obj), frames, slid)
+        except (skinslide.Error, ValueError) as e:
+            self.report({"ERROR"}, f"skinslide: {e}")
+            return {"CANCELLED"}
+        finally:
+            scene.frame_set(current)
+            wm.progress_end()
+        self.report({"INFO"}, f"skinslide: {len(frames)} frames baked into "
+                              f"'{obj.name}{SLID_SUFFIX}'")
+        return {"FINISHED"}
+
+
+# ---- The panel --------------------------------------------------------------------------------
+
+class SKINSLIDE_PT_panel(bpy.types.Panel):
+    bl_label = "Skin Slide"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "object"
+
+    @classmethod
+    def poll(cls, context):
+        return context.object is not None and context.object.type == "MESH"
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.object
+        s = obj.skinslide
+        if skinslide is None:
+            layout.label(text="The skinslide module is not found", icon="ERROR")
+        col = layout.column()
+        col.prop(s, "patch_source")
+        if s.patch_source == "FACE_MAP":
+            col.prop_search(s, "patch_face_map", obj, "face_maps")
+        elif s.patch_source == "VERTEX_GROUP":
+            col.prop_search(s, "patch_group", obj, "vertex_groups")
+        col.prop_search(s, "pin_group", obj, "vertex_groups")
+        col.prop_search(s, "weight_group", obj, "vertex_groups")
+        col.prop(s, "strength")
+        col.separator()
+        col.prop(s, "method")
+        if s.method == "elastic":
+            col.prop(s, "rotation_fits")
+            col.prop(s, "max_iterations")
+            col.prop(s, "tolerance")
+        else:
+            col.prop(s, "density")
+            col.prop(s, "holes")
+        col.separator()
+        col.prop(s, "use_scene_range")
+        row = col.row(align=True)
+        row.enabled = not s.use_scene_range
+        row.prop(s, "frame_start")
+        row.prop(s, "frame_end")
+        layout.operator(SKINSLIDE_OT_bake.bl_idname, icon="RENDER_ANIMATION")
+
+
+CLASSES = (SkinslideSettings, SKINSLIDE_OT_bake, SKINSLIDE_PT_panel)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+    bpy.types.Object.skinslide = bpy.props.PointerProperty(type=SkinslideSettings)
+
+
+def unregister():
+    del bpy.types.Object.skinslide
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

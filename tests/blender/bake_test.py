@@ -1,0 +1,142 @@
+"""Headless Blender test of the add-on (run by tests/blender/bake.sh):
+
+    blender -b --factory-startup -noaudio --python-exit-code 1 --python bake_test.py -- \
+        ADDON_DIR MODULE_DIR SKINSLIDE WORK_DIR
+
+A grid animated by an armature (a bone bends half of it) and by a shape key (a bulge), with a
+face selection, a pin group and a weight group; baked by the add-on's operator, both methods; the
+baked copy played back at every frame equals the command line's slide of the same evaluated
+frames (OBJ files written here), within Blender's float32 positions.
+"""
+import math
+import pathlib
+import subprocess
+import sys
+
+import bpy
+import numpy as np
+
+addon_dir, module_dir, skinslide_bin, work = sys.argv[sys.argv.index("--") + 1:]
+sys.path[:0] = [addon_dir, module_dir]
+import skinslide_addon  # noqa: E402
+
+work = pathlib.Path(work)
+FRAMES = range(1, 5)
+
+
+def build_scene():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    skinslide_addon.register()
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = FRAMES[0], FRAMES[-1]
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=16, y_subdivisions=8, size=2)
+    grid = bpy.context.object
+    grid.scale = (2, 1, 1)
+    bpy.ops.object.transform_apply(scale=True)
+    # A shape key: a bulge in the middle, keyed from 0 to 1.
+    grid.shape_key_add(name="Basis")
+    bulge = grid.shape_key_add(name="bulge")
+    for v, k in zip(grid.data.vertices, bulge.data):
+        k.co.z = v.co.z + 0.3 * math.exp(-4 * (v.co.x ** 2 + v.co.y ** 2))
+    for frame, value in ((1, 0.0), (4, 1.0)):
+        bulge.value = value
+        bulge.keyframe_insert("value", frame=frame)
+    # An armature of two bones along x; the second bends the grid's right half.
+    bpy.ops.object.armature_add(location=(-2, 0, 0))
+    arm = bpy.context.object
+    bpy.ops.object.mode_set(mode="EDIT")
+    root = arm.data.edit_bones[0]
+    root.head, root.tail = (0, 0, 0), (2, 0, 0)
+    bent = arm.data.edit_bones.new("tip")
+    bent.head, bent.tail, bent.parent = (2, 0, 0), (4, 0, 0), root
+    bpy.ops.object.mode_set(mode="OBJECT")
+    for name, side in ((arm.data.bones[0].name, -1), ("tip", 1)):
+        group = grid.vertex_groups.new(name=name)
+        for v in grid.data.vertices:
+            w = min(1.0, max(0.0, 0.5 + side * v.co.x))  # a soft blend over the middle
+            if w > 0:
+                group.add([v.index], w, "REPLACE")
+    grid.modifiers.new("armature", "ARMATURE").object = arm
+    tip = arm.pose.bones["tip"]
+    tip.rotation_mode = "XYZ"
+    for frame, angle in ((1, 0.0), (4, 1.0)):
+        tip.rotation_euler = (0, 0, angle)
+        tip.keyframe_insert("rotation_euler", frame=frame)
+    # Controls: a pin and weights.
+    pins = grid.vertex_groups.new(name="pins")
+    pins.add([grid.data.vertices[60].index], 1.0, "REPLACE")
+    slide = grid.vertex_groups.new(name="slide")
+    for v in grid.data.vertices:
+        slide.add([v.index], 0.5 + 0.5 * (v.index % 3 == 0), "REPLACE")
+    # Every face but the first row is the patch.
+    for p in grid.data.polygons:
+        p.select = p.index >= 16
+    bpy.context.view_layer.objects.active = grid
+    grid.select_set(True)
+    return grid
+
+
+def write_obj(path, positions, mesh):
+    with open(path, "w") as f:
+        for x, y, z in positions:
+            f.write(f"v {float(x)!r} {float(y)!r} {float(z)!r}\n")
+        for p in mesh.polygons:
+            f.write("f " + " ".join(str(v + 1) for v in p.vertices) + "\n")
+
+
+def played_back(obj, frame):
+    bpy.context.scene.frame_set(frame)
+    return skinslide_addon.evaluated_positions(obj, bpy.context.evaluated_depsgraph_get(),
+                                               len(obj.data.vertices))
+
+
+def check(grid, method):
+    s = grid.skinslide
+    s.method, s.pin_group, s.weight_group, s.strength = method, "pins", "slide", 0.9
+    assert bpy.ops.object.skinslide_bake() == {"FINISHED"}, method
+    copy = bpy.data.objects[grid.name + skinslide_addon.SLID_SUFFIX]
+    # The command line on the frames Blender evaluated (float32, written exactly).
+    case = work / method
+    (case / "frames").mkdir(parents=True, exist_ok=True)
+    bind, faces, sizes = skinslide_addon.mesh_arrays(grid.data)
+    write_obj(case / "bind.obj", bind, grid.data)
+    frames = []
+    for frame in FRAMES:
+        frames.append(case / "frames" / f"grid.{frame:04d}.obj")
+        write_obj(frames[-1], played_back(grid, frame), grid.data)
+    patch = skinslide_addon.patch_faces(grid, s)
+    (case / "patch.txt").write_text(" ".join(map(str, patch)) + "\n")
+    weights = skinslide_addon.group_weights(grid, "slide")
+    (case / "weights.txt").write_text("".join(f"{w!r}\n" for w in weights))
+    (case / "pins.txt").write_text("60\n")
+    subprocess.run([skinslide_bin, "-q", "--method", method, "--patch", case / "patch.txt",
+                    "--weights", case / "weights.txt", "--pin", case / "pins.txt",
+                    "--strength", "0.9", case / "bind.obj", *frames, "-o", case / "slid"],
+                   check=True)
+    diagonal = np.linalg.norm(bind.max(axis=0) - bind.min(axis=0))
+    moved = 0.0
+    for frame, path in zip(FRAMES, frames):
+        expected = np.array([l.split()[1:4] for l in open(case / "slid" / path.name)
+                             if l.startswith("v ")], dtype=np.float64)
+        got = played_back(copy, frame)
+        # Blender keeps float32 positions, and plays a key back as basis + (key - basis).
+        error = np.abs(got - expected).max()
+        assert error <= 1e-6 * diagonal, f"{method} frame {frame}: off by {error}"
+        moved = max(moved, np.abs(expected - played_back(grid, frame)).max())
+    assert moved > 1e-3 * diagonal, f"{method}: the skin slid ({moved})"
+    print(f"bake_test: {method}: {len(FRAMES)} frames played back as the command slid them "
+          f"(largest slide {moved:.4g})")
+
+
+grid = build_scene()
+for method in ("elastic", "paper"):
+    check(grid, method)
+# An error is Blender's report, not a crash: a patch of no faces.
+for p in grid.data.polygons:
+    p.select = False
+try:
+    bpy.ops.object.skinslide_bake()
+    raise SystemExit("bake_test: an empty patch was not refused")
+except RuntimeError as e:  # operator reports of type ERROR raise in background mode
+    assert "the patch has no faces" in str(e), e
+print("bake_test: passed")

@@ -1,0 +1,153 @@
+"""The Python module against the command line: the same bits on data/ and on a shared character,
+both methods; parallel frames; errors with their kinds; the file readers."""
+import concurrent.futures
+import pathlib
+
+import numpy as np
+import pytest
+
+import skinslide
+from conftest import ROOT, obj_positions, shared
+
+DATA = ROOT / "data"
+METHODS = ["elastic", "paper"]
+
+
+def slider_from_files(bind_path, patch_path, **options):
+    positions, face_vertices, face_sizes = skinslide.read_mesh(str(bind_path))
+    patch = skinslide.read_patch(str(patch_path), len(face_sizes))
+    return skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes, **options)
+
+
+def frame_positions(path):
+    return skinslide.read_mesh(str(path))[0]
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("case", ["elbow", "face"])
+def test_data_slides_to_the_commands_bits(case, method, cli, tmp_path):
+    bind, patch = DATA / case / "bind.obj", DATA / case / "patch.txt"
+    frames = sorted((DATA / case / "frames").glob("*.obj"))
+    cli("--method", method, "--patch", patch, bind, *frames, "-o", tmp_path)
+    slider = slider_from_files(bind, patch, method=method)
+    moved = 0
+    for frame in frames:
+        positions, report = slider.slide(frame_positions(frame))
+        expected = obj_positions(tmp_path / frame.name)
+        assert positions.dtype == np.float64 and positions.shape == expected.shape
+        assert positions.tobytes() == expected.tobytes(), frame.name
+        moved += report["moved"]
+    assert moved > 0, "the deformed frames slide"
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_shared_character_slides_to_the_commands_bits(method, cli, tmp_path):
+    glb = shared("data/gltf/CesiumMan.glb")
+    # The character's walk posed by the command itself, unslid (--strength 0): OBJ frames.
+    posed = tmp_path / "posed"
+    positions, face_vertices, face_sizes = skinslide.read_mesh(str(glb))
+    # The knees: faces whose centre lies between 20% and 40% up the figure (z up).
+    corners = positions[face_vertices.reshape(-1, 3)]
+    z = corners[:, :, 2].mean(axis=1)
+    low, high = positions[:, 2].min(), positions[:, 2].max()
+    faces = np.flatnonzero((z >= low + 0.2 * (high - low)) & (z <= low + 0.4 * (high - low)))
+    patch = tmp_path / "knees.txt"
+    patch.write_text(" ".join(map(str, faces)) + "\n")
+    cli("--patch", patch, "--animation", "0", "--frames", "0-47:12", "--format", "obj",
+        "--strength", "0", "-o", posed, glb)
+    frames = sorted(posed.glob("*.obj"))
+    assert len(frames) == 4
+    slid = tmp_path / "slid"
+    cli("--method", method, "--patch", patch, glb, *frames, "-o", slid)
+    # glTF faces are triangles: the (faces, 3) layout serves as well as face_sizes.
+    slider = skinslide.Slider(positions, face_vertices.reshape(-1, 3), faces, method=method)
+    assert sum(p["free"] for p in slider.patches) > 0
+    moved = 0
+    for frame in frames:
+        out, report = slider.slide(frame_positions(frame))
+        assert out.tobytes() == obj_positions(slid / frame.name).tobytes(), frame.name
+        moved += report["moved"]
+    assert moved > 0, "the walking knees slide"
+
+
+def test_a_thread_pool_gives_the_bits_of_a_serial_run():
+    slider = slider_from_files(DATA / "face" / "bind.obj", DATA / "face" / "patch.txt")
+    frames = [frame_positions(f) for f in sorted((DATA / "face" / "frames").glob("*.obj"))]
+    serial = [slider.slide(f)[0].tobytes() for f in frames]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        parallel = [r[0].tobytes() for r in pool.map(slider.slide, frames)]
+    assert parallel == serial
+
+
+def test_controls_from_files_match_the_command(cli, tmp_path):
+    bind, patch = DATA / "face" / "bind.obj", DATA / "face" / "patch.txt"
+    frame = DATA / "face" / "frames" / "face.0003.obj"
+    positions = frame_positions(bind)
+    weights, pins = tmp_path / "w.txt", tmp_path / "pins.txt"
+    weights.write_text("".join(f"{v} {(v % 5) / 4}\n" for v in range(len(positions))))
+    pins.write_text("10-20 55\n")
+    cli("--method", "paper", "--patch", patch, "--weights", weights, "--pin", pins,
+        "--strength", "0.8", bind, frame, "-o", tmp_path / "out")
+    slider = slider_from_files(bind, patch, method="paper", strength=0.8,
+                               weights=skinslide.read_weights(str(weights), len(positions)),
+                               pins=skinslide.read_pins(str(pins), len(positions)))
+    out, _ = slider.slide(frame_positions(frame))
+    assert out.tobytes() == obj_positions(tmp_path / "out" / frame.name).tobytes()
+
+
+def test_reports_carry_each_methods_figures():
+    bind, patch = DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt"
+    frame = frame_positions(DATA / "elbow" / "frames" / "elbow.0005.obj")
+    elastic = slider_from_files(bind, patch)
+    _, report = elastic.slide(frame, edge_spread=True)
+    figures = report["patches"][0]
+    assert figures["stop"] in ("converged", "limit", "at rest", "no descent")
+    assert figures["energy_after"] <= figures["energy_before"]
+    assert figures["spread_slid"] < figures["spread_frame"], "sliding evens the stretch"
+    assert elastic.options["method"] == "elastic" and elastic.method == "elastic"
+    paper = slider_from_files(bind, patch, method="paper", density="uniform")
+    _, report = paper.slide(frame)
+    assert "cg_iterations" in report["patches"][0] and "spread_slid" not in report["patches"][0]
+    assert paper.options["density"] == "uniform"
+    assert report["moved"] == sum(p["moved"] for p in report["patches"]) > 0
+
+
+def test_inputs_are_not_changed_and_outputs_are_fresh_arrays():
+    slider = slider_from_files(DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt")
+    frame = frame_positions(DATA / "elbow" / "frames" / "elbow.0005.obj")
+    before = frame.copy()
+    out, _ = slider.slide(frame)
+    assert np.array_equal(frame, before) and not np.shares_memory(out, frame)
+    # A float32 or Fortran-ordered frame is converted, to the same result.
+    assert slider.slide(np.asfortranarray(frame))[0].tobytes() == out.tobytes()
+
+
+def test_errors_raise_with_their_kinds(tmp_path):
+    positions, face_vertices, face_sizes = skinslide.read_mesh(str(DATA / "elbow" / "bind.obj"))
+    patch = skinslide.read_patch(str(DATA / "elbow" / "patch.txt"))
+
+    def make(**kwargs):
+        return skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes, **kwargs)
+
+    cases = [
+        (lambda: make(method="paper", rotation_fits=2), skinslide.UsageError, "rotation_fits"),
+        (lambda: make(density="paper"), skinslide.UsageError, "applies to method 'paper'"),
+        (lambda: make(method="sideways"), skinslide.UsageError, "unknown method"),
+        (lambda: make(tolerance=2.0), skinslide.UsageError, "tolerance"),
+        (lambda: make(frobnicate=1), skinslide.UsageError, "unknown option frobnicate"),
+        (lambda: make(pins=[10**6]), skinslide.UsageError, "out of range"),
+        (lambda: skinslide.Slider(positions, face_vertices, [10**6], face_sizes=face_sizes),
+         skinslide.InputError, "out of range"),
+        (lambda: make().slide(positions[:-1]), skinslide.InputError, "vertices"),
+        (lambda: skinslide.read_patch(str(tmp_path / "none.txt")), skinslide.InputError,
+         "cannot read"),
+    ]
+    for call, error, words in cases:
+        with pytest.raises(error, match=words) as caught:
+            call()
+        assert isinstance(caught.value, skinslide.Error)
+        assert caught.value.kind == error.__name__[:-len("Error")].lower()
+    bad = tmp_path / "bad.txt"
+    bad.write_text("1 2\nthree\n")
+    with pytest.raises(skinslide.InputError, match=r"bad.txt:2"):
+        skinslide.read_patch(str(bad))
