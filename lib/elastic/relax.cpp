@@ -83,7 +83,7 @@ class Relaxation {
     g_movable_.resize(m_);
     for (Index i = 0; i < m_; ++i)
       T_[i] = state_.on_node[i] ? node_jacobian(surface_, setup_.movable[i])
-                                : surface_.jacobians[state_.where[i].triangle];
+                                : surface_jacobian(surface_, state_.where[i].triangle);
   }
 
   // The direction with the vertices in held_ held (none when empty), as a candidate.
@@ -142,7 +142,7 @@ class Relaxation {
       const Index v = setup_.movable[i];
       out.entered[i] = entered_triangle(setup_.chart, state_.on_node[i] ? v : -1, state_.node_uv[v],
                                         state_.where[i].triangle, d[i]);
-      out.rise[i] = g_[v].dot(surface_.jacobians[out.entered[i]] * d[i]);
+      out.rise[i] = g_[v].dot(surface_jacobian(surface_, out.entered[i]) * d[i]);
       slope += out.rise[i];
     }
     if (!(slope < 0))

@@ -28,20 +28,23 @@ double wedge_score(const Chart& chart, Index t, Index v, const Vec2& d) {
 }  // namespace
 
 FrameSurface frame_surface(const Chart& chart, const Positions3& frame) {
-  FrameSurface out{chart, frame, {}, {}, 0.0};
+  FrameSurface out{chart, frame, {}, 0.0};
   const Index nt = chart.patch_triangle_count;
   out.normals.resize(nt);
-  out.jacobians.resize(nt);
   for (Index t = 0; t < nt; ++t) {
     const Triangle& tri = chart.triangles[t];
-    Mat32 e;
-    e.col(0) = frame[tri[1]] - frame[tri[0]];
-    e.col(1) = frame[tri[2]] - frame[tri[0]];
-    out.normals[t] = e.col(0).cross(e.col(1));
+    out.normals[t] = (frame[tri[1]] - frame[tri[0]]).cross(frame[tri[2]] - frame[tri[0]]);
     out.area += 0.5 * out.normals[t].norm();
-    out.jacobians[t] = e * chart.inverse_edges[t];
   }
   return out;
+}
+
+Mat32 surface_jacobian(const FrameSurface& surface, Index t) {
+  const Triangle& tri = surface.chart.triangles[t];
+  Mat32 e;
+  e.col(0) = surface.frame[tri[1]] - surface.frame[tri[0]];
+  e.col(1) = surface.frame[tri[2]] - surface.frame[tri[0]];
+  return e * surface.chart.inverse_edges[t];
 }
 
 Vec3 surface_point(const FrameSurface& surface, const ChartPoint& p) {
@@ -119,7 +122,7 @@ Vec2 redirected_from_node(const FrameSurface& surface, Index v, const Mat32& T, 
   double best_score = -INFINITY;
   for (Index k = chart.corner_start[v]; k < chart.corner_start[v + 1]; ++k) {
     const Index t = chart.corner_triangles[k];
-    const Mat32& Tk = surface.jacobians[t];
+    const Mat32 Tk = surface_jacobian(surface, t);
     const Eigen::Matrix2d A = Tk.transpose() * Tk;
     if (!(std::abs(A.determinant()) > 0)) continue;
     const Vec2 dk = A.inverse() * (Tk.transpose() * motion);

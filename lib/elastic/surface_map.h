@@ -13,16 +13,19 @@
 namespace skinslide {
 
 /// One frame over one chart: per patch triangle the frame's normal (not normalised: twice the
-/// area) and dPhi/du (3x2). Built once per frame; read-only afterwards.
+/// area). Built once per frame; read-only afterwards.
 struct FrameSurface {
   const Chart& chart;
-  const Positions3& frame;       ///< the frame's positions of the patch's vertices (local ids)
-  std::vector<Vec3> normals;     ///< per patch triangle
-  std::vector<Mat32> jacobians;  ///< per patch triangle
-  double area = 0;               ///< the frame's patch area
+  const Positions3& frame;    ///< the frame's positions of the patch's vertices (local ids)
+  std::vector<Vec3> normals;  ///< per patch triangle
+  double area = 0;            ///< the frame's patch area
 };
 
 FrameSurface frame_surface(const Chart& chart, const Positions3& frame);
+
+/// dPhi/du (3x2) over patch triangle t, computed when asked (a few operations) rather than
+/// stored: a frame in flight holds less.
+Mat32 surface_jacobian(const FrameSurface& surface, Index t);
 
 /// Phi at a chart point: on its frame triangle.
 Vec3 surface_point(const FrameSurface& surface, const ChartPoint& p);
