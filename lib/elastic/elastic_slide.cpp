@@ -57,6 +57,8 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   report.energy_before = relaxed.energy_before;
   report.energy_after = relaxed.energy_after;
   report.iterations = relaxed.iterations;
+  report.solves = relaxed.solves;
+  report.solve_iterations = relaxed.solver_iterations;
   report.held = relaxed.held;
   report.stop = stop_name(relaxed.stop);
   const Chart& chart = setup.chart;

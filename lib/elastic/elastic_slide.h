@@ -31,6 +31,8 @@ struct ElasticReport {
   double energy_before = 0;  ///< the frame's elastic energy against the bind
   double energy_after = 0;   ///< after the slide, never above energy_before
   int iterations = 0;        ///< steps taken
+  int solves = 0;            ///< step directions solved (a step's first, and around holds)
+  int solve_iterations = 0;  ///< conjugate-gradient iterations of those solves
   int held = 0;              ///< vertex-steps held in place to keep a step a descent
   int slid_flips = 0;        ///< slid triangles whose normal turns against the frame's (want 0)
   std::string stop;          ///< why the relaxation stopped; empty: the patch was skipped

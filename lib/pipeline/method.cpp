@@ -73,6 +73,8 @@ Figures figures_of(const ElasticReport& r) {
   return {{"energy_before", r.energy_before},
           {"energy_after", r.energy_after},
           {"iterations", Long{r.iterations}},
+          {"solves", Long{r.solves}},
+          {"solve_iterations", Long{r.solve_iterations}},
           {"stop", r.stop.empty() ? std::string("skipped") : r.stop},
           {"held", Long{r.held}},
           {"flips", Long{r.slid_flips}}};

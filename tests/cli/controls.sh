@@ -48,13 +48,15 @@ assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving"
 p = r["patches"][0]
 assert p["free"] == 288 and p["moving"] == 288 and p["outer_loop_start"] == 352 and not p["skipped"]
 assert [f["path"] for f in r["frames"]] == ["data/elbow/frames/elbow.000%d.obj" % k for k in range(1, 6)]
-keys = ["energy_before", "energy_after", "iterations", "stop", "held", "flips", "moved",
+keys = ["energy_before", "energy_after", "iterations", "solves", "solve_iterations", "stop", "held",
+        "flips", "moved",
         "max_slide", "mean_slide", "spread_frame", "spread_slid"]
 for f in r["frames"]:
     fp = f["patches"][0]
     assert list(fp) == keys, list(fp)
     assert fp["energy_after"] <= fp["energy_before"] and fp["flips"] == 0, fp
     assert fp["stop"] in ("at rest", "converged", "no descent", "limit"), fp
+    assert fp["solves"] >= fp["iterations"] and fp["solve_iterations"] <= 8 * fp["solves"], fp
 assert r["frames"][0]["patches"][0]["stop"] == "at rest"  # elbow.0001 is the bind pose
 last = r["frames"][-1]["patches"][0]
 assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and last["iterations"] > 0
