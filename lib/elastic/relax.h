@@ -20,7 +20,7 @@ namespace skinslide {
 struct ElasticOptions {
   /// ARAP local/global rounds: each fits every triangle's rotation to the slid patch, then
   /// lowers the energy with them held. More rounds reach lower ARAP energies; fewer keep the
-  /// slide smoother from frame to frame (README "Choosing the defaults").
+  /// slide smoother from frame to frame (lib/elastic/README.md "Choosing the defaults").
   int rotation_fits = 3;
   int max_iterations = 100;  ///< steps per round at most
   /// A round stops at the first step that lowers its energy by less than this fraction of the
