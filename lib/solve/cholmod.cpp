@@ -2,6 +2,8 @@
 
 #include <mutex>
 
+#include "core/check.h"
+
 namespace skinslide {
 
 Cholmod::Cholmod() {
@@ -15,13 +17,14 @@ Cholmod::Cholmod() {
 
 Cholmod::~Cholmod() { cholmod_finish(&c_); }
 
-cholmod_sparse cholmod_view(const SparseMatrix& K) {
+cholmod_sparse cholmod_view(Index size, const Index* start, const Index* index,
+                            const double* value) {
   cholmod_sparse A{};
-  A.nrow = A.ncol = static_cast<size_t>(K.rows());
-  A.nzmax = static_cast<size_t>(K.nonZeros());
-  A.p = const_cast<Index*>(K.outerIndexPtr());
-  A.i = const_cast<Index*>(K.innerIndexPtr());
-  A.x = const_cast<double*>(K.valuePtr());
+  A.nrow = A.ncol = static_cast<size_t>(size);
+  A.nzmax = static_cast<size_t>(start[size]);
+  A.p = const_cast<Index*>(start);
+  A.i = const_cast<Index*>(index);
+  A.x = const_cast<double*>(value);
   A.stype = -1;
   A.itype = CHOLMOD_INT;
   A.xtype = CHOLMOD_REAL;
@@ -29,6 +32,12 @@ cholmod_sparse cholmod_view(const SparseMatrix& K) {
   A.sorted = 1;
   A.packed = 1;
   return A;
+}
+
+cholmod_sparse cholmod_view(const SparseMatrix& K) {
+  SKINSLIDE_CHECK(K.isCompressed(), "CHOLMOD reads a compressed matrix");
+  return cholmod_view(static_cast<Index>(K.rows()), K.outerIndexPtr(), K.innerIndexPtr(),
+                      K.valuePtr());
 }
 
 // METIS, which finds the separators, keeps state between calls outside the call (its random

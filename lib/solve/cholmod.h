@@ -28,7 +28,12 @@ class Cholmod {
   cholmod_common c_;
 };
 
-/// A view of K (both triangles stored; CHOLMOD reads the lower one). No copy.
+/// A view of a symmetric matrix of `size` rows in compressed columns (`start`, `index`,
+/// `value`; both triangles stored, CHOLMOD reads the lower one). No copy.
+cholmod_sparse cholmod_view(Index size, const Index* start, const Index* index,
+                            const double* value);
+
+/// The same view of K.
 cholmod_sparse cholmod_view(const SparseMatrix& K);
 
 /// The symbolic analysis of A with the nested-dissection ordering, one at a time (see .cpp).

@@ -60,18 +60,7 @@ CholeskyFactor cholesky_factor(const SymmetricView& A) {
   c->final_ll = 1;
   c->final_pack = 1;
   c->final_monotonic = 1;
-  cholmod_sparse view{};
-  view.nrow = view.ncol = static_cast<size_t>(A.size);
-  view.nzmax = static_cast<size_t>(A.start[A.size]);
-  view.p = const_cast<Index*>(A.start);
-  view.i = const_cast<Index*>(A.index);
-  view.x = const_cast<double*>(A.value);
-  view.stype = -1;
-  view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
-  view.sorted = 1;
-  view.packed = 1;
+  cholmod_sparse view = cholmod_view(A.size, A.start, A.index, A.value);
   cholmod_factor* L = analyze_with_nested_dissection(view, c);
   const bool factored = L && c->status == CHOLMOD_OK && cholmod_factorize(&view, L, c.get()) &&
                         c->status == CHOLMOD_OK && L->minor == L->n;

@@ -61,17 +61,22 @@ struct Fan {
     chart.corner_triangles = {0, 1, 0, 1, 0, 1};
     for (const Vec2& uv : chart.uv) frame.push_back(Vec3(uv.x(), uv.y(), 0));
   }
+  // Vertex 2 on its own node, the slid fan the frame.
+  SlideState start() const {
+    SlideState state;
+    state.node_uv = chart.uv;
+    state.where = {ChartPoint{0, {0, 0, 1}}};
+    state.on_node = {1};
+    state.x = frame;
+    return state;
+  }
 };
 
 TEST(FlipFreeLineSearch, CutsAFoldingStepShortAndLowersTheEnergy) {
   const Fan fan;
   const FrameSurface surface = frame_surface(fan.chart, fan.frame);
   const LineSearchPatch patch{surface, fan.movable, fan.movable_slot};
-  SlideState state;
-  state.node_uv = fan.chart.uv;
-  state.where = {ChartPoint{0, {0, 0, 1}}};
-  state.on_node = {1};
-  state.x = fan.frame;
+  const SlideState state = fan.start();
   const auto energy_at = [](const Positions3& x) { return std::pow(x[2].y() - 0.5, 2); };
   StepCandidate step;
   step.d = {Vec2(0, -2)};
@@ -91,11 +96,7 @@ TEST(FlipFreeLineSearch, NoStepWhenEveryShareRaisesTheEnergy) {
   const Fan fan;
   const FrameSurface surface = frame_surface(fan.chart, fan.frame);
   const LineSearchPatch patch{surface, fan.movable, fan.movable_slot};
-  SlideState state;
-  state.node_uv = fan.chart.uv;
-  state.where = {ChartPoint{0, {0, 0, 1}}};
-  state.on_node = {1};
-  state.x = fan.frame;
+  const SlideState state = fan.start();
   // Already at the minimum along x: any move raises the energy, whatever the slope claims.
   const auto energy_at = [](const Positions3& x) { return std::pow(x[2].x() - 1, 2); };
   StepCandidate step;
