@@ -526,6 +526,68 @@ FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
   return plan;
 }
 
+namespace {
+
+// The frame loop: the chosen frames on `threads` threads, each a pure function of its frame;
+// per chosen frame its error, if it failed. Stops at the first failure unless --keep-going.
+std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunEvents& events,
+                                                 const BindSetup& setup, const MeshFile& bind,
+                                                 const FrameSource& source, CacheWriter* cache_out,
+                                                 unsigned threads, RunReport& report) {
+  const std::vector<size_t>& chosen = source.plan.chosen;
+  const size_t count = chosen.size();
+  const auto done = [&](size_t j, std::vector<LogLine> lines) {
+    if (events.frame_done) events.frame_done(j, std::move(lines));
+  };
+  std::atomic<size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::vector<std::unique_ptr<Error>> errors(count);
+  if (!o.report.empty()) report.frames.resize(count);
+  auto worker = [&] {
+    for (size_t j; !stop && (j = next++) < count;) {
+      const size_t i = chosen[j];
+      const std::string& label = frame_label(o, source, i);
+      const CacheSlot slot{cache_out, j};  // the chosen frames are one run of samples
+      try {
+        ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
+        done(j, run_source_frame(setup, bind, source, o, i, slot, record));
+        continue;
+      } catch (const Error& e) {
+        errors[j] = std::make_unique<Error>(e);
+      } catch (const std::bad_alloc&) {
+        errors[j] = std::make_unique<Error>(ErrorKind::Internal, label + ": out of memory");
+      } catch (const std::exception& e) {
+        errors[j] = std::make_unique<Error>(ErrorKind::Internal, label + ": " + e.what());
+      }
+      // Fail fast by default: a farm task with a bad frame should fail, not half-succeed
+      // (README "Exit codes"). --keep-going writes every good frame and names every bad one.
+      if (o.keep_going)
+        done(j, {});
+      else
+        stop = true;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  return errors;
+}
+
+// The JSON report, written last and atomically; --keep-going: it lists the frames written.
+void write_run_report(const RunOptions& o, const BindSetup& setup, double wall_seconds,
+                      RunReport& report) {
+  report.bind = o.bind;
+  report.patch_files = o.patches;
+  report.timings = o.report_timings;
+  report.wall_seconds = wall_seconds;
+  std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });
+  write_file_atomic(o.report, report_json(setup, report));
+  const fs::path report_folder = fs::path(o.report).parent_path();
+  sync_folder(report_folder.empty() ? "." : report_folder.string());
+}
+
+}  // namespace
+
 RunResult run(const RunOptions& o, const RunEvents& events) {
   const auto log = [&](const LogLine& line) {
     if (events.log) events.log(line);
@@ -585,40 +647,8 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
                              " at a time" +
                              (o.threads == 0 ? " (-j 0: the cores this task may use)" : "")});
   if (events.frames_begin) events.frames_begin(count);
-  const auto done = [&](size_t j, std::vector<LogLine> lines) {
-    if (events.frame_done) events.frame_done(j, std::move(lines));
-  };
-  std::atomic<size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::vector<std::unique_ptr<Error>> errors(count);
-  if (!o.report.empty()) report.frames.resize(count);
-  auto worker = [&] {
-    for (size_t j; !stop && (j = next++) < count;) {
-      const size_t i = chosen[j];
-      const std::string& label = frame_label(o, source, i);
-      const CacheSlot slot{cache_out.get(), j};  // the chosen frames are one run of samples
-      try {
-        ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
-        done(j, run_source_frame(setup, bind, source, o, i, slot, record));
-        continue;
-      } catch (const Error& e) {
-        errors[j] = std::make_unique<Error>(e);
-      } catch (const std::bad_alloc&) {
-        errors[j] = std::make_unique<Error>(ErrorKind::Internal, label + ": out of memory");
-      } catch (const std::exception& e) {
-        errors[j] = std::make_unique<Error>(ErrorKind::Internal, label + ": " + e.what());
-      }
-      // Fail fast by default: a farm task with a bad frame should fail, not half-succeed
-      // (README "Exit codes"). --keep-going writes every good frame and names every bad one.
-      if (o.keep_going)
-        done(j, {});
-      else
-        stop = true;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
+  std::vector<std::unique_ptr<Error>> errors =
+      slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report);
   if (events.frames_end) events.frames_end();
   // A cache has no holes: it appears only when every chosen frame is in it.
   const bool all_written =
@@ -640,17 +670,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
     log({LogLevel::Error, "skinslide: error: " + plan.cache +
                               ": not written: " + std::to_string(result.failures.size()) +
                               " of its samples failed, and a cache cannot have holes"});
-  if (!o.report.empty()) {
-    report.bind = o.bind;
-    report.patch_files = o.patches;
-    report.timings = o.report_timings;
-    report.wall_seconds = seconds_since(t_run);
-    // --keep-going: the report lists the frames written.
-    std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });
-    write_file_atomic(o.report, report_json(setup, report));
-    const fs::path report_folder = fs::path(o.report).parent_path();
-    sync_folder(report_folder.empty() ? "." : report_folder.string());
-  }
+  if (!o.report.empty()) write_run_report(o, setup, seconds_since(t_run), report);
   return result;
 }
 
