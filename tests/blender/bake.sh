@@ -7,18 +7,15 @@
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
-skip() {
-  echo "SKIPPED: $*"
-  if [ "${SKINSLIDE_REQUIRE_SHARED:-0}" = 1 ]; then exit 1; fi
-  exit 77
-}
+# shellcheck source=../cli/cannot.sh
+. "$root/tests/cli/cannot.sh"
 if ! command -v blender >/dev/null 2>&1; then
-  if [ "$(id -u)" -ne 0 ]; then skip "no blender, and not root to install it (apt-get install blender)"; fi
+  if [ "$(id -u)" -ne 0 ]; then cannot "no blender, and not root to install it (apt-get install blender)"; fi
   echo "bake.sh: installing blender (Debian)" >&2
   # scripts/deps.sh: the one installer, one apt-get at a time (tests/cli/blender_cache.sh may be
   # installing Blender at the same moment).
   "$root/scripts/deps.sh" blender >/tmp/skinslide-apt-blender.log 2>&1 ||
-    skip "apt-get install blender failed (/tmp/skinslide-apt-blender.log)"
+    cannot "apt-get install blender failed (/tmp/skinslide-apt-blender.log)"
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -18,14 +18,8 @@ blender=${BLENDER:-blender}
 failed=0
 passed=0
 
-cannot() {
-  if [ "${SKINSLIDE_REQUIRE_SHARED:-0}" = 1 ]; then
-    echo "FAIL: $* (SKINSLIDE_REQUIRE_SHARED=1: the Blender test must run)" >&2
-    exit 1
-  fi
-  echo "SKIP: $*"
-  exit 77
-}
+# shellcheck source=cannot.sh
+. "$(dirname "$0")/cannot.sh"
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

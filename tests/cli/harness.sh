@@ -11,17 +11,13 @@ failed=0
 # The real test data checked out beside the repository (a clone elsewhere has none).
 shared=${SKINSLIDE_SHARED_DIR:-$(cd "$root/.." && pwd)/shared}
 
-require_shared() {  # require_shared FILE...: ends the script when a file is missing, naming it:
-  # exit 77 (ctest: skipped), or 1 (failed) when SKINSLIDE_REQUIRE_SHARED=1 (CI has ../shared)
+# shellcheck source=cannot.sh
+. "$here/cannot.sh"
+
+require_shared() {  # require_shared FILE...: ends the script when a file is missing, naming it
   local f
   for f in "$@"; do
-    [ -e "$f" ] && continue
-    if [ "${SKINSLIDE_REQUIRE_SHARED:-}" = 1 ]; then
-      echo "FAIL: missing $f (SKINSLIDE_REQUIRE_SHARED=1)" >&2
-      exit 1
-    fi
-    echo "SKIP: missing $f"
-    exit 77
+    [ -e "$f" ] || cannot "missing $f"
   done
 }
 

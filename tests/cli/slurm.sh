@@ -21,14 +21,8 @@ wait_seconds=180  # a bound on every wait for the cluster: jobs here take a few 
 failed=0
 passed=0
 
-cannot() {
-  if [ "${SKINSLIDE_REQUIRE_SHARED:-0}" = 1 ]; then
-    echo "FAIL: $* (SKINSLIDE_REQUIRE_SHARED=1: the farm test must run)" >&2
-    exit 1
-  fi
-  echo "SKIP: $*"
-  exit 77
-}
+# shellcheck source=cannot.sh
+. "$(dirname "$0")/cannot.sh"
 
 check() {
   local what=$1
