@@ -106,15 +106,7 @@ done
 # The same shot as one PC2 cache (frames 1-24): each chunk is a cache of its own
 # (shot.0001-0010.pc2, ...; the last clamped to 0021-0024), and `skinslide join` makes the whole
 # shot's cache from them, byte for byte the one-task run's.
-/usr/bin/python3 - "$tmp/shot.pc2" "${frames[@]}" <<'PY'
-import struct, sys
-frames = [[tuple(map(float, l.split()[1:4])) for l in open(p) if l.startswith("v ")]
-          for p in sys.argv[2:]]
-with open(sys.argv[1], "wb") as f:
-    f.write(struct.pack("<12siiffi", b"POINTCACHE2\0", 1, len(frames[0]), 1.0, 1.0, len(frames)))
-    for v in frames:
-        f.write(b"".join(struct.pack("<3f", *p) for p in v))
-PY
+/usr/bin/python3 "$(dirname "$0")/objs_to_pc2.py" "$tmp/shot.pc2" "${frames[@]}"
 check "the whole cache, one task" slide -j 2 -o "$tmp/cache1" "$tmp/shot.pc2"
 check "the cache's chunks run side by side (xargs -P 3)" \
   xargs -P 3 -I RANGE "$bin" -q -j 1 --frames RANGE -o "$tmp/cachefarm" --patch data/elbow/patch.txt \

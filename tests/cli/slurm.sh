@@ -141,15 +141,7 @@ for ((f = 1; f <= shot_frames; f++)); do
   ln -s "${sample[$(((f - 1) % ${#sample[@]}))]}" "$shot/frames/$(printf 'arm.%04d.obj' "$f")"
 done
 # The same frames as a PC2 point cache (frames 1-24), written as Blender's exporter writes one.
-/usr/bin/python3 - "$shot/shot.pc2" "$shot"/frames/*.obj <<'EOF'
-import struct, sys
-frames = [[tuple(map(float, l.split()[1:4])) for l in open(p) if l.startswith("v ")]
-          for p in sys.argv[2:]]
-with open(sys.argv[1], "wb") as f:
-    f.write(struct.pack("<12siiffi", b"POINTCACHE2\0", 1, len(frames[0]), 1.0, 1.0, len(frames)))
-    for v in frames:
-        f.write(b"".join(struct.pack("<3f", *p) for p in v))
-EOF
+/usr/bin/python3 "$(dirname "$0")/objs_to_pc2.py" "$shot/shot.pc2" "$shot"/frames/*.obj
 
 slide() { "$bin" -q -j 2 --patch "$shot/patch.txt" "$shot/bind.obj" "$@"; }
 check "one local run of the OBJ sequence" slide -o "$tmp/local/obj" "$shot"/frames/*.obj
