@@ -35,7 +35,6 @@ std::shared_ptr<const ElasticSetup> elastic_patch_setup(Patch& patch, const Posi
   std::vector<Index> movable;
   for (Index v : patch.free_vertices)
     if (weight.empty() || weight[patch.vertices[v]] > 0) movable.push_back(v);
-  patch.bind_lengths = bar_lengths(points, patch.bars);
   auto setup = std::make_shared<const ElasticSetup>(
       elastic_setup(points, patch.triangles, patch.loops, patch.outer_loop, movable));
   patch.bind_net.assign(

@@ -19,7 +19,7 @@ namespace skinslide {
 /// Sets up one patch that slides (not skipped): its chart and rest shape over the vertices that
 /// move (free, slide weight > 0: a vertex of weight 0 is held where the frame puts it, and the
 /// skin around it slides). Fills `patch.bind_net` with the chart's positions of the patch's
-/// vertices, `patch.bind_net_flips` and `patch.bind_lengths`.
+/// vertices and `patch.bind_net_flips`.
 /// \param points bind positions of the patch's vertices (local ids)
 /// \param weight slide weight per mesh vertex (#V); empty = 1 everywhere
 /// \throw Error as elastic_setup (disk_chart).

@@ -26,7 +26,7 @@ struct Patch {
   /// Local ids that slide (not on any loop, not pinned), ascending.
   std::vector<Index> free_vertices;
   std::vector<Index> pinned;         ///< local ids pinned by SlideControls::pins (not on a loop)
-  std::vector<double> bind_lengths;  ///< 3D length of each bar in the bind (not when skipped)
+  std::vector<double> bind_lengths;  ///< 3D length of each bar in the bind
   double bind_diagonal = 0;          ///< bounding-box diagonal of the patch in the bind
   /// The method's 2D picture of the patch at bind, one entry a local vertex: the paper's bind
   /// net on the unit square, or the elastic method's chart. Empty when skipped.

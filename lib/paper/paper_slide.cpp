@@ -145,7 +145,6 @@ PaperSetup paper_setup(Patch& patch, const Positions3& points, const PaperOption
   setup.corners_chosen = corners.chosen;
   const auto& outer = patch.loops[patch.outer_loop];
   for (int j = 0; j < 4; ++j) setup.corners[j] = outer[outer_2d.corners[j]];
-  patch.bind_lengths = bar_lengths(points, patch.bars);
   const std::vector<double> q =
       force_densities(patch.bind_lengths, options.density, options.q_floor);
   const FrameNetMethod method = frame_net_method(

@@ -97,7 +97,7 @@ struct PaperSetup {
 };
 
 /// Sets up one patch that slides (not skipped): its outer loop on the square, its bind net (in
-/// `patch.bind_net`, with `patch.bind_net_flips` and `patch.bind_lengths`), its frame-net solver.
+/// `patch.bind_net`, with `patch.bind_net_flips`), its frame-net solver.
 /// \param points bind positions of the patch's vertices (local ids)
 /// \param spare_thread a second thread may build the frame-net solver while the bind net is
 ///        solved (the same solver either way)

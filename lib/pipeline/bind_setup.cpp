@@ -9,6 +9,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "unwrap/force_density.h"
 #include "unwrap/square_boundary.h"
 
 namespace skinslide {
@@ -214,6 +215,8 @@ Patch patch_net(const PolyMesh& bind, const PatchComponent& comp, std::size_t in
       patch.free_vertices.push_back(v);
     }
   }
+  // Every patch's bars are measured, a skipped one's too: the report's spreads read them.
+  patch.bind_lengths = bar_lengths(points, patch.bars);
   patch.skipped = patch.free_vertices.empty();
   if (patch.skipped) return patch;  // nothing to move: no unwrap needed, whatever the loops
   CornerChoice corners;

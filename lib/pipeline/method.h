@@ -58,7 +58,7 @@ MethodSetup method_setup(const SlideOptions& options, std::size_t patch_count);
 SlideOptions method_options(const MethodSetup& method);
 
 /// Sets patch `p` up for the method (not called for a skipped patch): fills its slot in
-/// `method` and the patch's bind picture (Patch::bind_net, bind_net_flips, bind_lengths).
+/// `method` and the patch's bind picture (Patch::bind_net, bind_net_flips).
 /// Patches may be set up concurrently, each by one thread.
 /// \param points bind positions of the patch's vertices (local ids)
 /// \param weight slide weight per mesh vertex; empty = 1 everywhere

@@ -256,5 +256,28 @@ TEST(SlideFrame, APatchWithOnlyBoundaryVerticesIsSkipped) {
   EXPECT_TRUE(slide_frame(setup, bind.positions).slid.vertex.empty());
 }
 
+TEST(SlideFrame, AStrayTriangleBesideAPatchReportsItsSpreads) {
+  // A selection of one face has every vertex on its loop: nothing slides there, and its edge
+  // spreads are the frame's, for either method (they read the bind's bar lengths).
+  const test::Sample c = test::load_sample("elbow");
+  std::vector<std::pair<std::string, SlideOptions>> methods = {{"elastic", ElasticOptions{}},
+                                                               {"paper", PaperOptions{}}};
+  for (const auto& [name, options] : methods) {
+    const BindSetup setup = bind_setup(c.bind, {c.faces, {1000}}, options);
+    ASSERT_EQ(setup.patches.size(), 2u) << name;
+    ASSERT_TRUE(setup.patches[1].skipped) << name;
+    const Positions3& frame = c.frames.back();
+    const FrameResult r = slide_frame(setup, frame, {.edge_spread = true});
+    ASSERT_EQ(r.patches.size(), 2u) << name;
+    const Patch& stray = setup.patches[1];
+    EXPECT_EQ(stray.bind_lengths.size(), stray.bars.size()) << name;
+    EXPECT_EQ(r.patches[1].moved, 0) << name;
+    const double spread = edge_log_spread(stray, c.bind.positions, frame);
+    EXPECT_NEAR(r.patches[1].spread_frame, spread, 1e-12) << name;
+    EXPECT_NEAR(r.patches[1].spread_slid, spread, 1e-12) << name;
+    EXPECT_GT(r.patches[0].spread_frame, r.patches[0].spread_slid) << name;
+  }
+}
+
 }  // namespace
 }  // namespace skinslide
