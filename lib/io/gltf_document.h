@@ -2,8 +2,11 @@
 // only io/*.cpp include this header (it pulls in tinygltf; STYLE.md section 1).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -39,5 +42,14 @@ struct GltfDocument {
   std::vector<std::array<Index, 3>> triangle_raw;
   std::vector<int> triangle_primitive;  ///< index into `primitives` of each triangle
 };
+
+/// True when `path` ends in .glb (any case): the reader's MeshFile::format, and what the writer
+/// writes (a GLB, else a .gltf with .bin files).
+inline bool has_glb_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".glb";
+}
 
 }  // namespace skinslide
