@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <set>
 
 #include "core/check.h"
@@ -12,6 +13,7 @@
 #include "io/atomic_write.h"
 #include "io/gltf_accessor.h"
 #include "io/gltf_document.h"
+#include "io/gltf_uri.h"
 
 namespace skinslide {
 namespace {
@@ -28,7 +30,7 @@ bool has_glb_magic(const std::string& bytes) {
 
 // Images are never decoded: skinslide writes them back as they were. The encoded bytes of a
 // data-URI image are kept (as_is) because nothing else holds them; buffer-view images stay in
-// their buffer and external ones keep their URI.
+// their buffer, and external ones keep their URI and are never opened (io/gltf_uri.h).
 bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void*) {
   if (image->bufferView < 0 && image->uri.empty()) {
@@ -149,6 +151,37 @@ void check_attribute(const tinygltf::Model& model, int accessor, int type, Index
          "has " + std::to_string(acc.count) + " elements, POSITION has " + std::to_string(count));
 }
 
+// The file at `path` parsed by tinygltf. Every buffer URI is judged (io/gltf_uri.h) before
+// tinygltf opens a file, and tinygltf then opens only the files so approved: no byte from outside
+// the glTF's folder and the trusted trees is read, and no image at all.
+std::shared_ptr<GltfDocument> load_document(const std::string& path,
+                                            const MeshReadOptions& options) {
+  const std::string bytes = read_file(path);
+  auto doc = std::make_shared<GltfDocument>();
+  ApprovedFiles files = approved_buffer_files(path, bytes, options.allow_uri_outside);
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(approved_files_only(files));
+  loader.SetImageLoader(keep_image_bytes, nullptr);
+  std::string err, warn;
+  const std::string base_dir = fs::path(path).parent_path().string();
+  doc->binary = has_glb_magic(bytes);
+  const bool ok =
+      doc->binary
+          ? loader.LoadBinaryFromMemory(&doc->model, &err, &warn,
+                                        reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        static_cast<unsigned>(bytes.size()), base_dir)
+          : loader.LoadASCIIFromString(&doc->model, &err, &warn, bytes.data(),
+                                       static_cast<unsigned>(bytes.size()), base_dir);
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    std::replace(err.begin(), err.end(), '\n', ';');
+    fail(path,
+         "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : err));
+  }
+  doc->files_read = std::move(files.read);
+  return doc;
+}
+
 }  // namespace
 
 // An open-addressing table over the positions' bits: a std::map node per vertex had cost a cache
@@ -188,26 +221,7 @@ std::vector<Index> weld_positions(const Positions3& raw) {
 }
 
 MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options) {
-  const std::string bytes = read_file(path);
-  auto doc = std::make_shared<GltfDocument>();
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(keep_image_bytes, nullptr);
-  std::string err, warn;
-  const std::string base_dir = fs::path(path).parent_path().string();
-  doc->binary = has_glb_magic(bytes);
-  const bool ok =
-      doc->binary
-          ? loader.LoadBinaryFromMemory(&doc->model, &err, &warn,
-                                        reinterpret_cast<const unsigned char*>(bytes.data()),
-                                        static_cast<unsigned>(bytes.size()), base_dir)
-          : loader.LoadASCIIFromString(&doc->model, &err, &warn, bytes.data(),
-                                       static_cast<unsigned>(bytes.size()), base_dir);
-  if (!ok) {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    std::replace(err.begin(), err.end(), '\n', ';');
-    fail(path,
-         "not a readable glTF 2.0 file: " + (err.empty() ? std::string("unknown error") : err));
-  }
+  const std::shared_ptr<GltfDocument> doc = load_document(path, options);
   const tinygltf::Model& model = doc->model;
   doc->mesh = choose_mesh(model, path, options.mesh);
   const tinygltf::Mesh& mesh = model.meshes[doc->mesh];

@@ -22,11 +22,14 @@ namespace skinslide {
 /// welded triangle surface (MeshFile::mesh) and the document, kept for writing.
 /// `options.mesh`: empty = the only mesh; else a mesh name, or failing that an index.
 /// Sparse accessors, normalized and quantized (KHR_mesh_quantization) attributes, interleaved
-/// buffer views and external or data-URI buffers are read. Images are not decoded.
+/// buffer views and external or data-URI buffers are read. External buffers are read only from
+/// inside the file's folder or a tree of `options.allow_uri_outside` (io/gltf_uri.h), each URI
+/// judged before any file is opened. Images are neither decoded nor opened.
 /// \throw Error(Input) naming the path (and mesh, primitive, accessor) on anything malformed or
 ///        unsupported: Draco or meshopt compression, no triangle, a missing POSITION, an index or
 ///        element out of range, a non-finite position; with several meshes and no choice, the
-///        message lists them with their primitive and vertex counts.
+///        message lists them with their primitive and vertex counts; naming the buffer and its
+///        URI for a URI the rule refuses.
 MeshFile read_gltf_file(const std::string& path, const MeshReadOptions& options);
 
 /// Raw vertex -> welded vertex: raw vertices (split at UV seams) at exactly the same position are
