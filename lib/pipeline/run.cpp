@@ -298,7 +298,7 @@ std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, con
                                const std::string& frame_path, const std::string& out_path,
                                ReportFrame* record) {
   auto t0 = std::chrono::steady_clock::now();
-  MeshFile frame = read_mesh_file(frame_path, {o.mesh});
+  MeshFile frame = read_mesh_file(frame_path, {o.mesh, o.allow_uri_outside});
   require_same_topology(bind, frame);
   release_faces(frame);
   const double read_seconds = seconds_since(t0);
@@ -602,7 +602,9 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   if (files && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored.
-  MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
+  const MeshReadOptions read_options{o.mesh, o.allow_uri_outside};
+  MeshFile bind =
+      o.rig ? read_gltf_file(o.bind, read_options) : read_mesh_file(o.bind, read_options);
   const FrameSource source = frame_source(o, bind, std::move(files_plan), cache_run);
   const FramePlan& plan = source.plan;
   std::vector<std::vector<Index>> selections;

@@ -29,6 +29,8 @@ struct RunOptions {
   std::vector<std::string> patches;  ///< --patch files, in order; each file's patches separate
   std::vector<std::string> frames;   ///< FRAME files, in order; empty with `rig`
   std::string mesh;                  ///< --mesh (name, else index); empty = the only one
+  /// --allow-uri-outside: trees a glTF's buffers may be read from besides its own folder.
+  std::vector<std::string> allow_uri_outside;
   /// --animation (and --fps): BIND is a rigged glTF character, the frames its clip's samples.
   std::optional<RigOptions> rig;
   /// --format of the slid frames: "obj" or "glb" (a file a frame), "pc2" or "mdd" (one point
