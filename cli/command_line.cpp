@@ -57,7 +57,7 @@ void add_inputs(CLI::App& app, CliOptions& o) {
   app.add_option("--allow-uri-outside", o.run.allow_uri_outside,
                  "Also read glTF buffers from this folder's tree (repeatable); else a glTF reads "
                  "only data: URIs and files inside its own folder")
-      ->check(CLI::ExistingDirectory)
+      ->check(CLI::Validator(CLI::ExistingDirectory).description(""))  // help: "DIR", not "DIR:DIR"
       ->allow_extra_args(false)
       ->type_name("DIR")
       ->group(gl);
