@@ -126,19 +126,34 @@ TEST(GltfUri, TraversalOutOfTheFolderIsRefused) {
                  "outside");
 }
 
-TEST(GltfUri, TraversalFromAGlbIsRefused) {
-  const Layout t;
-  const std::string json = leaking_gltf("../secret.bin");
+// A GLB of `json` alone (no BIN chunk: every buffer has a URI).
+std::string glb_of(const std::string& json) {
   std::string glb = "glTF";
   const auto u32 = [&](std::uint32_t v) {
     for (int k = 0; k < 4; ++k) glb += static_cast<char>((v >> (8 * k)) & 0xFF);
   };
-  std::string padded = json + std::string((4 - json.size() % 4) % 4, ' ');
+  const std::string padded = json + std::string((4 - json.size() % 4) % 4, ' ');
   u32(2);
   u32(static_cast<std::uint32_t>(20 + padded.size()));
   u32(static_cast<std::uint32_t>(padded.size()));
-  glb += "JSON" + padded;
-  expect_refused(t.gltf("leak.glb", glb), 1, "../secret.bin", "outside the glTF's folder");
+  return glb + "JSON" + padded;
+}
+
+TEST(GltfUri, GlbBuffersFollowTheSameRule) {
+  const Layout t;
+  expect_refused(t.gltf("leak.glb", glb_of(leaking_gltf("../secret.bin"))), 1, "../secret.bin",
+                 "outside the glTF's folder");
+  const MeshFile f = read_gltf_file(t.gltf("inside.glb", glb_of(triangle_gltf("tri.bin"))), {});
+  EXPECT_TRUE(f.gltf->binary);
+  EXPECT_EQ(f.gltf->files_read,
+            std::vector<std::string>{fs::weakly_canonical(t.asset / "tri.bin").string()});
+}
+
+// The URI is judged as JSON decodes it: \u002e is a dot.
+TEST(GltfUri, JsonEscapedTraversalIsRefused) {
+  const Layout t;
+  expect_refused(t.gltf("escaped.gltf", leaking_gltf(R"(\u002e\u002e\/secret.bin)")), 1,
+                 "../secret.bin", "outside the glTF's folder");
 }
 
 TEST(GltfUri, SymlinkInsideTheFolderPointingOutIsRefused) {
