@@ -19,7 +19,7 @@ printf '0-17\n' >"$patch"
 
 # make.py bin OUT: the buffer of a 4x4 grid bent along x (18 triangles, 4 inner vertices).
 # make.py gltf OUT URI [--extra URI LENGTH] [--image URI]...: its glTF, buffer 0 at URI ("data":
-# embedded), and an unused buffer 1 of LENGTH bytes at the --extra URI (the issue's repro).
+# embedded), and an unused buffer 1 of LENGTH bytes at the --extra URI (the leak as reported).
 cat >"$tmp/make.py" <<'PY'
 import argparse, base64, json, struct
 def grid():
@@ -72,7 +72,7 @@ refused() {  # refused CODE OUTDIR TEXT ARGS...: exit CODE, stderr holds TEXT, n
 rule="a glTF's buffers are read only from data: URIs and from files inside its own folder"
 size=$(stat -c %s "$tmp/secret.txt")
 
-# The issue's repro, as filed: an unused second buffer climbing to /etc/hostname; before, the run
+# The leak as first reported: an unused second buffer climbing to /etc/hostname; before, the run
 # exited 0 and wrote out/bind_1.bin, a copy of it.
 if [ -r /etc/hostname ]; then
   make gltf "$asset/bind.gltf" data --extra ../../../../../../../../etc/hostname "$(stat -c %s /etc/hostname)"

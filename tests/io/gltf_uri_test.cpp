@@ -111,7 +111,7 @@ std::string climbing_to(const fs::path& target) {
 
 TEST(GltfUri, TraversalOutOfTheFolderIsRefused) {
   const Layout t;
-  // The repro: an unused second buffer whose URI climbs to a file outside.
+  // The leak as first reported: an unused second buffer whose URI climbs to a file outside.
   const std::string uri = climbing_to(t.secret);
   expect_refused(t.gltf("climb.gltf", leaking_gltf(uri)), 1, uri,
                  "resolves to " + fs::weakly_canonical(t.secret).string() +
@@ -218,7 +218,8 @@ TEST(GltfUri, DotDotThatStaysInsideIsRead) {
     EXPECT_EQ(f.gltf->files_read,
               std::vector<std::string>{fs::weakly_canonical(t.asset / "tri.bin").string()});
   }
-  // The pattern: a glTF in a nested folder of the asset's tree, reaching a sibling.
+  // A real pattern, a glTF in a nested folder of the asset's tree reaching a sibling folder, is
+  // outside the glTF's own folder: it takes --allow-uri-outside (AllowUriOutside... below).
   write(t.asset / "shared" / "body.bin", triangle_bytes());
   const fs::path nested = t.asset / "lod0" / "hero.gltf";
   write(nested, triangle_gltf("../shared/body.bin"));
