@@ -1,15 +1,10 @@
 #include "command_line.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
+#include "core/file_extension.h"
 #include "core/version.h"
 
 namespace skinslide::cli {
 namespace {
-
-namespace fs = std::filesystem;
 
 const char* const kDescription =
     ": skin sliding for deformed character meshes.\n"
@@ -306,9 +301,7 @@ void check_options(const CLI::App& app, CliOptions& o) {
   if (app.count("--format") > 0 && !o.has_rig && !cache_frame)
     throw CLI::ValidationError("--format",
                                "applies to --animation or a point cache FRAME (.pc2, .mdd)");
-  std::string ext = fs::path(r.bind).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(r.bind);
   const bool gltf_bind = ext == ".gltf" || ext == ".glb";
   if (o.has_rig && !gltf_bind)
     throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + r.bind);

@@ -1,10 +1,9 @@
 #include "io/mesh_file.h"
 
 #include <algorithm>
-#include <cctype>
-#include <filesystem>
 
 #include "core/error.h"
+#include "core/file_extension.h"
 #include "io/atomic_write.h"
 #include "io/gltf.h"
 #include "io/obj_read.h"
@@ -19,9 +18,7 @@ std::string MeshFile::where_face(Index face) const {
 }
 
 MeshFormat mesh_format(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(path);
   if (ext == ".obj") return MeshFormat::Obj;
   if (ext == ".gltf") return MeshFormat::Gltf;
   if (ext == ".glb") return MeshFormat::Glb;

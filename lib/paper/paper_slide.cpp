@@ -1,20 +1,16 @@
 #include "paper/paper_slide.h"
 
 #include <algorithm>
-#include <chrono>
 #include <future>
 #include <utility>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "unwrap/square_boundary.h"
 
 namespace skinslide {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 Positions3 gather(const Positions3& positions, const std::vector<Index>& ids) {
   Positions3 out(ids.size());
@@ -177,7 +173,7 @@ PaperSlide paper_slide(const PaperSetup& setup, const Patch& patch, const Positi
   PaperSlide result;
   PaperReport& report = result.report;
   PatchSlide& slid = result.slid;
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   const std::vector<double> q =
       force_densities(bar_lengths(points, patch.bars), options.density, options.q_floor);
   FrameNetSolution net = setup.solver->solve(q, frame_net_options(options));
@@ -189,7 +185,7 @@ PaperSlide paper_slide(const PaperSetup& setup, const Patch& patch, const Positi
   report.frame_net_flips = folds.flipped;
   slid.solve_seconds = seconds_since(t0);
 
-  t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   const bool by_image = options.locate == Locate::Image;
   IdImage image;
   if (by_image) image = id_raster(slid.net, patch.triangles, options.lookup_size);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -14,6 +13,7 @@
 #include <utility>
 
 #include "core/cores.h"
+#include "core/stopwatch.h"
 #include "io/atomic_write.h"
 #include "io/gltf.h"
 #include "io/gltf_weights.h"
@@ -35,10 +35,6 @@ namespace skinslide {
 namespace {
 
 namespace fs = std::filesystem;
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Same file (by identity when it exists, else by normalised path).
 bool same_file(const fs::path& a, const fs::path& b) {
@@ -297,7 +293,7 @@ void write_frame_pictures(const BindSetup& setup, const RunOptions& o,
 std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, const RunOptions& o,
                                const std::string& frame_path, const std::string& out_path,
                                ReportFrame* record) {
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   MeshFile frame = read_mesh_file(frame_path, {o.mesh});
   require_same_topology(bind, frame);
   release_faces(frame);
@@ -309,7 +305,7 @@ std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, con
   }
   const FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
   write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
-  t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   write_slid_mesh_file(frame, result.slid, out_path);
   if (record) record_frame(*record, frame_path, out_path, read_seconds, seconds_since(t0), result);
   return frame_lines(setup, result, frame_path, out_path);
@@ -345,7 +341,7 @@ std::vector<LogLine> run_cache_frame(const BindSetup& setup, const MeshFile& bin
                                      ReportFrame* record) {
   const std::string label =
       cache.cache->path() + " sample " + std::to_string(k) + " (" + cache.names[k] + ")";
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   CacheSample frame = cache.cache->sample(k);
   const Positions3 positions = sample_positions(frame);
   const double read_seconds = seconds_since(t0);
@@ -354,7 +350,7 @@ std::vector<LogLine> run_cache_frame(const BindSetup& setup, const MeshFile& bin
     result = slide_named(setup, o, positions, label);
     write_frame_pictures(setup, o, cache.names[k] + ".cache", positions, result);
   }
-  t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   write_cache_frame(bind, o, std::move(frame), positions, result.slid, out_path, slot, label);
   if (o.no_slide)
     return {{LogLevel::Info, "skinslide: " + label + ": unchanged (--no-slide) -> " + out_path}};
@@ -378,12 +374,12 @@ std::vector<LogLine> run_rig_frame(const BindSetup& setup, const MeshFile& chara
                                    const std::string& out_path, CacheSlot slot,
                                    ReportFrame* record) {
   const std::string label = clip.names[k] + " (t = " + log_number(clip.times[k]) + " s)";
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   const MeshFile frame = rig_frame(character, clip, k);
   const double pose_seconds = seconds_since(t0);
   const FrameResult result = slide_named(setup, o, frame.mesh.positions, label);
   write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
-  t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   if (slot.writer)
     slot.writer->write_sample(slot.sample,
                               positions_sample(apply_slide(frame.mesh.positions, result.slid)));
@@ -592,7 +588,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   const auto log = [&](const LogLine& line) {
     if (events.log) events.log(line);
   };
-  const auto t_run = std::chrono::steady_clock::now();
+  const auto t_run = Clock::now();
   // A rig run's frames are known once the character is read, a cache's once its header is;
   // their --frames is checked before.
   const bool cache_run = !o.rig && is_cache_run(o.frames);
