@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

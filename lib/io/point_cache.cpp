@@ -14,7 +14,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/file_extension.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

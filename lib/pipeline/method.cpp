@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

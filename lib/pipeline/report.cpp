@@ -7,7 +7,7 @@
 #include <variant>
 
 #include "core/version.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

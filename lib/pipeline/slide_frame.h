@@ -9,7 +9,7 @@
 #include "locate/id_raster.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/method.h"
-#include "slide/transfer.h"
+#include "mesh/slid_vertices.h"
 
 namespace skinslide {
 

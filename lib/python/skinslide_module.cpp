@@ -19,7 +19,7 @@
 #include <pybind11/stl.h>
 
 #include "core/version.h"
-#include "io/mesh_file.h"
+#include "io/mesh_formats.h"
 #include "io/patch_file.h"
 #include "io/vertex_list.h"
 #include "skinslide.h"

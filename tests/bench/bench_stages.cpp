@@ -25,7 +25,7 @@
 #include "core/allocator.h"
 #include "core/error.h"
 #include "elastic/relax.h"
-#include "io/mesh_file.h"
+#include "io/mesh_formats.h"
 #include "io/patch_file.h"
 #include "locate/locate.h"
 #include "pipeline/bind_setup.h"

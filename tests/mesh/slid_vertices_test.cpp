@@ -1,4 +1,4 @@
-#include "slide/transfer.h"
+#include "mesh/slid_vertices.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,7 @@
-// Transfer: the slid 3D position of each free patch vertex, interpolated in the frame's surface.
-// Yang & Zhang 2010, section III.F, equation (4): P' = a*VA + b*VB + c*VC.
+// The vertices a slide moved and where each landed on the frame's surface: a fan triangle of a
+// mesh face and barycentric weights on its corners, the 3D point interpolated there (Yang & Zhang
+// 2010, section III.F, equation (4): P' = a*VA + b*VB + c*VC). Mesh vocabulary, below both
+// methods and every file format: io/ writes a slid frame from it.
 #pragma once
 
 #include <array>
