@@ -6,8 +6,7 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/force_density.h"
+#include "mesh/measures.h"
 
 namespace skinslide {
 namespace {

@@ -7,7 +7,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
-#include "unwrap/square_boundary.h"
+#include "paper/square_boundary.h"
 
 namespace skinslide {
 namespace {

@@ -15,10 +15,11 @@
 #include "core/types.h"
 #include "locate/id_raster.h"
 #include "locate/locate.h"
+#include "mesh/measures.h"
 #include "mesh/patch.h"
 #include "slide/patch_slide.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/force_density.h"
+#include "paper/bar_net.h"
+#include "paper/force_density.h"
 
 namespace skinslide {
 

@@ -32,8 +32,9 @@
 #include "pipeline/method.h"
 #include "pipeline/options.h"
 #include "pipeline/slide_frame.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/force_density.h"
+#include "paper/bar_net.h"
+#include "paper/force_density.h"
+#include "mesh/measures.h"
 
 using namespace skinslide;
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "unwrap/force_density.h"
+#include "paper/force_density.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,14 +6,6 @@
 #include "core/error.h"
 
 namespace skinslide {
-
-std::vector<double> bar_lengths(const Positions3& points,
-                                const std::vector<std::array<Index, 2>>& bars) {
-  std::vector<double> lengths(bars.size());
-  for (size_t i = 0; i < bars.size(); ++i)
-    lengths[i] = (points[bars[i][0]] - points[bars[i][1]]).norm();
-  return lengths;
-}
 
 std::vector<double> force_densities(const std::vector<double>& lengths, Density density,
                                     double q_floor) {

@@ -1,7 +1,6 @@
 // Force densities of the bar net (Yang & Zhang 2010, section III.C, equation (2)).
 #pragma once
 
-#include <array>
 #include <vector>
 
 #include "core/types.h"
@@ -14,10 +13,6 @@ enum class Density {
   Inverse,  ///< q = max(Lmin/L, q_floor): long bars soft (also spelled `length`: q ~ 1/L)
   Uniform,  ///< q = 1: Tutte's barycentric embedding
 };
-
-/// 3D length of each bar. `points`: positions indexed by the bars' node ids.
-std::vector<double> bar_lengths(const Positions3& points,
-                                const std::vector<std::array<Index, 2>>& bars);
 
 /// Force density of each bar from its length, normalised per patch (Lmin, Lmax of `lengths`):
 ///  - Paper:   q = max(1 - L/Lmax, q_floor); without the floor the longest bar has q = 0.

@@ -1,4 +1,4 @@
-#include "unwrap/force_density.h"
+#include "paper/force_density.h"
 
 #include <gtest/gtest.h>
 
@@ -35,14 +35,6 @@ TEST(ForceDensity, UniformIsOne) {
 
 TEST(ForceDensity, AllZeroLengthsIsAnInputError) {
   EXPECT_THROW(force_densities({0.0, 0.0}, Density::Paper, 1e-3), Error);
-}
-
-TEST(ForceDensity, BarLengthsAreEuclidean) {
-  const Positions3 p{{0, 0, 0}, {3, 4, 0}, {3, 4, 12}};
-  const auto l = bar_lengths(p, {{0, 1}, {1, 2}, {0, 2}});
-  EXPECT_DOUBLE_EQ(l[0], 5);
-  EXPECT_DOUBLE_EQ(l[1], 12);
-  EXPECT_DOUBLE_EQ(l[2], 13);
 }
 
 }  // namespace skinslide

@@ -1,4 +1,4 @@
-#include "unwrap/square_boundary.h"
+#include "paper/square_boundary.h"
 
 #include <cmath>
 
@@ -42,12 +42,6 @@ TEST(SquareBoundary, SidesAreSpacedByArcLength) {
 }
 
 TEST(SquareBoundary, RejectsShortLoops) { EXPECT_THROW(square_positions(circle(3)), Error); }
-
-TEST(SquareBoundary, OuterLoopIsTheLongestAndTiesGoToTheSmallestStart) {
-  EXPECT_EQ(outer_loop({1.0, 3.0, 2.0}, {0, 5, 9}), 1);
-  EXPECT_EQ(outer_loop({3.0, 3.0 * (1 - 1e-12)}, {7, 4}), 1);
-  EXPECT_EQ(outer_loop({3.0, 3.0 * (1 - 1e-6)}, {7, 4}), 0);
-}
 
 }  // namespace
 }  // namespace skinslide

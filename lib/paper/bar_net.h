@@ -105,15 +105,4 @@ class FrameNetSolver {
   std::shared_ptr<const AggregationMultigrid> multigrid_;  // its levels (multigrid)
 };
 
-/// How many triangles of a net do not keep the orientation of the majority.
-struct Folds {
-  int flipped = 0;              ///< zero area or of the minority sign (what reports call flips)
-  std::vector<Index> reversed;  ///< strictly of the minority sign, ascending: the folds that
-                                ///< cover points a second time
-};
-Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles);
-
-/// Triangles of `net` whose signed area is zero or of the minority sign (folds of the net).
-int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles);
-
 }  // namespace skinslide

@@ -1,4 +1,4 @@
-#include "unwrap/bar_net.h"
+#include "paper/bar_net.h"
 
 #include <algorithm>
 #include <cmath>
@@ -365,29 +365,6 @@ FrameNetSolution FrameNetSolver::solve(const std::vector<double>& q,
   }
   out.positions = scatter(net_, free_id_, x, start_);
   return out;
-}
-
-Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles) {
-  std::vector<double> area(triangles.size());
-  int positive = 0, negative = 0;
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const Vec2 e1 = net[triangles[t][1]] - net[triangles[t][0]];
-    const Vec2 e2 = net[triangles[t][2]] - net[triangles[t][0]];
-    area[t] = e1.x() * e2.y() - e1.y() * e2.x();
-    positive += area[t] > 0;
-    negative += area[t] < 0;
-  }
-  const double sign = positive >= negative ? 1.0 : -1.0;
-  Folds folds;
-  for (size_t t = 0; t < area.size(); ++t) {
-    folds.flipped += area[t] * sign <= 0;
-    if (area[t] * sign < 0) folds.reversed.push_back(static_cast<Index>(t));
-  }
-  return folds;
-}
-
-int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles) {
-  return count_folds(net, triangles).flipped;
 }
 
 }  // namespace skinslide

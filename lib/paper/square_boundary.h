@@ -1,4 +1,5 @@
-// The outer boundary loop on the unit square (Yang & Zhang 2010, section III.B).
+// The outer boundary loop on the unit square (Yang & Zhang 2010, section III.B); which loop is
+// the outer one: mesh/outer_loop.h.
 #pragma once
 
 #include <array>
@@ -7,17 +8,6 @@
 #include "core/types.h"
 
 namespace skinslide {
-
-/// Relative tolerance of the tie rules below (loop lengths, corner arc lengths).
-constexpr double kTieRelative = 1e-9;
-
-/// Which loop goes on the square: the longest in 3D. Loops within kTieRelative (relative) of the
-/// longest tie; among them the one whose start (smallest) vertex id is smallest wins.
-/// `lengths`, `starts`: one entry per loop. \pre at least one loop.
-Index outer_loop(const std::vector<double>& lengths, const std::vector<Index>& starts);
-
-/// 3D length of a closed loop of points (including the closing edge).
-double loop_length(const Positions3& loop_points);
 
 struct SquareBoundary {
   std::array<Index, 4> corners{};  ///< positions in the loop of the corners (0,0) (1,0) (1,1) (0,1)
@@ -36,7 +26,7 @@ SquareBoundary square_positions(const Positions3& loop_points);
 /// the loop (points in walking order) of (0,0) (1,0) (1,1) (0,1), distinct and in walking order
 /// cyclically (corners[0] need not be 0). Vertices between two corners are spaced on that side by
 /// arc length, as above.
-/// 	hrow Error(Input) when the corners are not distinct and in walking order, or a side between
+/// \throw Error(Input) when the corners are not distinct and in walking order, or a side between
 ///        two corners has zero length.
 SquareBoundary square_positions(const Positions3& loop_points, const std::array<Index, 4>& corners);
 

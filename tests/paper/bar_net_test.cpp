@@ -1,4 +1,4 @@
-#include "unwrap/bar_net.h"
+#include "paper/bar_net.h"
 
 #include <random>
 
@@ -49,16 +49,6 @@ TEST(BarNet, TwoBarsBetweenTheSameFreeNodesActAsOneWithTheSumOfTheirQ) {
   const FrameNetSolution s = solver.solve({1, 0.5, 1.5, 1}, FrameNetOptions{});
   EXPECT_NEAR(s.positions[1].x(), 1.2, 1e-14);
   EXPECT_NEAR(s.positions[2].x(), 1.8, 1e-14);
-}
-
-TEST(BarNet, ReversedCountsOnlyTheMinoritySignFlippedAlsoZeroArea) {
-  // Three counter-clockwise triangles, one clockwise, one with zero area.
-  const Positions2 p{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 0}, {3, 0}};
-  const std::vector<Triangle> tris{{0, 1, 2}, {1, 3, 2}, {1, 4, 3}, {1, 2, 4}, {1, 4, 5}};
-  const Folds f = count_folds(p, tris);
-  EXPECT_EQ(f.reversed, std::vector<Index>{3});
-  EXPECT_EQ(f.flipped, 2);
-  EXPECT_EQ(flipped_triangles(p, tris), 2);
 }
 
 TEST(BarNet, AFreeNodeWithNoPathToAFixedOneIsANumericError) {
@@ -254,13 +244,6 @@ TEST(BarNet, MultigridFallsBackToADirectSolveWhenItRunsOutOfIterations) {
   const FrameNetSolution s = solver.solve(q, {1e-14, 1});
   EXPECT_TRUE(s.direct);
   EXPECT_LT(net_force(g.net, q, s.positions), 1e-12);
-}
-
-TEST(BarNet, FlippedTrianglesCountsTheMinorityOrientation) {
-  const Positions2 x{{0, 0}, {1, 0}, {0, 1}, {1, 1}};
-  EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {1, 3, 2}}), 0);
-  EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {1, 3, 2}, {0, 2, 1}}), 1);
-  EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {0, 1, 1}}), 1);  // zero area counts
 }
 
 }  // namespace
