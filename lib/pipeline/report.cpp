@@ -129,7 +129,7 @@ std::string patches_json(const BindSetup& setup) {
 struct FrameSums {
   long long moved = 0;
   double max_slide = 0;
-  std::vector<MethodReport> reports;  ///< every patch of every frame
+  MethodTotals totals;  ///< the method's, over every patch of every frame
   double read = 0, solve = 0, locate = 0, transfer = 0, write = 0;
 };
 
@@ -141,7 +141,7 @@ std::string frame_json(const ReportFrame& f, FrameSums& sums) {
     patches.push_back(add(patch, frame_figures(r)).str());
     sums.moved += r.moved;
     sums.max_slide = std::max(sums.max_slide, r.max_slide);
-    sums.reports.push_back(r.method);
+    add_to_totals(sums.totals, r.method);
     sums.solve += r.solve_seconds;
     sums.locate += r.locate_seconds;
     sums.transfer += r.transfer_seconds;
@@ -181,13 +181,14 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   root.add("controls", controls_json(setup, run));
   root.add("patches", patches_json(setup));
   FrameSums sums;
+  sums.totals = method_totals(setup.method);
   std::vector<std::string> frames;
   for (const ReportFrame& f : run.frames) frames.push_back(frame_json(f, sums));
   root.add("frames", array(frames, 2));
   Object totals(2);
   totals.add("frames", number(static_cast<long long>(run.frames.size())))
       .add("moved", number(sums.moved));
-  add(totals, total_figures(setup.method, sums.reports)).add("max_slide", number(sums.max_slide));
+  add(totals, total_figures(sums.totals)).add("max_slide", number(sums.max_slide));
   root.add("totals", totals.str());
   if (run.timings) root.add("timings", timings_json(run, sums));
   return root.str() + "\n";

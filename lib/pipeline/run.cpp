@@ -185,11 +185,11 @@ std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& resu
                                  const std::string& frame_path, const std::string& out_path) {
   double max_slide = 0;
   for (const PatchFrameReport& p : result.patches) max_slide = std::max(max_slide, p.max_slide);
-  const std::vector<MethodReport> reports = method_reports(result.patches);
+  const auto report = [&](size_t p) -> const MethodReport& { return result.patches[p].method; };
   std::vector<LogLine> lines;
   lines.push_back({LogLevel::Info, "skinslide: " + frame_path + ": " +
                                        std::to_string(setup.patches.size()) + " patches, " +
-                                       frame_summary(setup.method, setup.patches, reports,
+                                       frame_summary(setup.method, setup.patches, report,
                                                      ", max slide " + log_number(max_slide)) +
                                        " -> " + out_path});
   for (size_t p = 0; p < result.patches.size(); ++p) {

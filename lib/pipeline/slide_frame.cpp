@@ -86,13 +86,6 @@ Figures frame_figures(const PatchFrameReport& report) {
   return figures;
 }
 
-std::vector<MethodReport> method_reports(const std::vector<PatchFrameReport>& patches) {
-  std::vector<MethodReport> reports;
-  reports.reserve(patches.size());
-  for (const PatchFrameReport& r : patches) reports.push_back(r.method);
-  return reports;
-}
-
 FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
                         const FrameExtras& extras) {
   if (static_cast<Index>(frame.size()) != setup.vertex_count)

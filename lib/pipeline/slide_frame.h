@@ -59,7 +59,4 @@ FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
 /// slide's (moved, max_slide, mean_slide, spread_frame, spread_slid).
 Figures frame_figures(const PatchFrameReport& report);
 
-/// The method's reports of a frame's patches, in patch order.
-std::vector<MethodReport> method_reports(const std::vector<PatchFrameReport>& patches);
-
 }  // namespace skinslide
