@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <type_traits>
 #include <variant>
 
 #include "core/version.h"
+#include "io/atomic_write.h"
 #include "core/number_format.h"
 
 namespace skinslide {
@@ -192,6 +194,32 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   root.add("totals", totals.str());
   if (run.timings) root.add("timings", timings_json(run, sums));
   return root.str() + "\n";
+}
+
+void record_frame(ReportFrame& record, const std::string& source, const std::string& out_path,
+                  double read_seconds, double write_seconds,
+                  std::vector<PatchFrameReport> patches) {
+  record.path = source;
+  record.output = out_path;
+  record.read_seconds = read_seconds;
+  record.write_seconds = write_seconds;
+  record.patches = std::move(patches);
+  for (PatchFrameReport& r : record.patches) {
+    r.frame_net = {};
+    r.id_image = {};
+  }
+}
+
+void write_run_report(const RunOptions& o, const BindSetup& setup, double wall_seconds,
+                      RunReport& report) {
+  report.bind = o.bind;
+  report.patch_files = o.patches;
+  report.timings = o.report_timings;
+  report.wall_seconds = wall_seconds;
+  std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });
+  write_file_atomic(o.report, report_json(setup, report));
+  const std::filesystem::path report_folder = std::filesystem::path(o.report).parent_path();
+  sync_folder(report_folder.empty() ? "." : report_folder.string());
 }
 
 }  // namespace skinslide
