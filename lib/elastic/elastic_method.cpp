@@ -21,12 +21,6 @@ ElasticSlide slide_patch(const ElasticMethod& method, std::size_t p, const Patch
 
 std::string method_label(const ElasticMethod&) { return "method elastic"; }
 
-Figures option_figures(const ElasticOptions& o) {
-  return {{"rotation_fits", static_cast<long long>(o.rotation_fits)},
-          {"max_iterations", static_cast<long long>(o.max_iterations)},
-          {"tolerance", o.tolerance}};
-}
-
 Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& patch) {
   const ElasticSetup* e = method.patches[p].get();
   Figures f = patch_counts(patch);

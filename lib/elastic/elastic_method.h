@@ -35,9 +35,6 @@ ElasticSlide slide_patch(const ElasticMethod& method, std::size_t p, const Patch
 /// For the bind's log line: "method elastic".
 std::string method_label(const ElasticMethod& method);
 
-/// The report's "options" after the method's name: rotation_fits, max_iterations, tolerance.
-Figures option_figures(const ElasticOptions& options);
-
 /// The report's entry for patch `p` at bind: counts, moving, loops, skipped, chart_weights.
 Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& patch);
 

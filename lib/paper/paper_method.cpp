@@ -63,17 +63,6 @@ std::string method_label(const PaperMethod& method) {
          to_string(method.options.holes);
 }
 
-Figures option_figures(const PaperOptions& o) {
-  return {{"density", to_string(o.density)},
-          {"holes", to_string(o.holes)},
-          {"q_floor", o.q_floor},
-          {"frame_solver", to_string(o.frame_solver)},
-          {"cg_tolerance", o.cg_tolerance},
-          {"cg_max_iterations", static_cast<long long>(o.cg_max_iterations)},
-          {"locate", to_string(o.locate)},
-          {"lookup_size", static_cast<long long>(o.lookup_size)}};
-}
-
 Figures patch_figures(const PaperMethod& method, std::size_t p, const Patch& patch) {
   std::vector<long long> corners;
   if (const auto c = square_corners(method, p, patch))

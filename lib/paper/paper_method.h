@@ -45,10 +45,6 @@ PaperSlide slide_patch(const PaperMethod& method, std::size_t p, const Patch& pa
 /// For the bind's log line: "method paper, density inverse, holes fill".
 std::string method_label(const PaperMethod& method);
 
-/// The report's "options" after the method's name: density, holes, q_floor, frame_solver,
-/// cg_tolerance, cg_max_iterations, locate, lookup_size.
-Figures option_figures(const PaperOptions& options);
-
 /// The report's entry for patch `p` at bind: counts, loops, corners, corners_chosen, skipped,
 /// bind_net_flips, frame_solver.
 Figures patch_figures(const PaperMethod& method, std::size_t p, const Patch& patch);

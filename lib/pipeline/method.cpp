@@ -65,7 +65,9 @@ Figures option_figures(const MethodSetup& method) {
   return std::visit(
       [](const auto& m) {
         Figures f{{"method", method_name(m.options)}};
-        for (Figure& o : option_figures(m.options)) f.push_back(std::move(o));
+        using Options = std::decay_t<decltype(m.options)>;
+        for (Figure& o : option_figures(option_table<Options>(), m.options))
+          f.push_back(std::move(o));
         return f;
       },
       method);

@@ -1,11 +1,14 @@
 // What a run reads, writes and how it slides (README "Options"): the command line's options as
-// plain data, which cli/ fills and run() (pipeline/run.h) reads.
+// plain data, which cli/ fills and run() (pipeline/run.h) reads; and the table (core/option.h) of
+// the run's options both methods share, which the command line, the Python module and the
+// Blender add-on read.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/option.h"
 #include "core/types.h"
 #include "locate/id_raster.h"
 #include "pipeline/dumps.h"
@@ -51,5 +54,16 @@ struct RunOptions {
   bool keep_going = false;   ///< write every good frame and name every bad one
   bool no_slide = false;     ///< read, check and write every frame unchanged (not with `rig`)
 };
+
+/// The run's options both methods share and every client takes (the command line, the Python
+/// module's Slider, the add-on): --strength, then --method.
+template <>
+const OptionTable<RunOptions>& option_table<RunOptions>();
+
+/// --strength: RunOptions::strength.
+const Option<RunOptions>& strength_option();
+
+/// --method: which method slides, by its name (RunOptions::slide's alternative, with defaults).
+const Option<RunOptions>& method_option();
 
 }  // namespace skinslide
