@@ -4,6 +4,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "config_keys.h"
 #include "core/file_extension.h"
 #include "core/version.h"
 
@@ -238,6 +239,18 @@ void add_options(CLI::App& app, CliOptions& o) {
   add_method(app, o);
   add_run(app, o);
   add_controls(app, o);
+}
+
+void parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // A misspelt key leaves its option unset: a required option then seems missing.
+    if (e.get_exit_code() != 0) check_config_keys(app);
+    throw;
+  }
+  check_config_keys(app);
+  check_options(app, o);
 }
 
 void check_options(const CLI::App& app, CliOptions& o) {

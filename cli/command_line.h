@@ -40,6 +40,12 @@ std::string description();
 /// Declares every option on `app`, bound into `o`.
 void add_options(CLI::App& app, CliOptions& o);
 
+/// Parses the command line (and its --config file) into `o`, then checks what CLI11 does not:
+/// every key of the config file names an option (cli/config_keys.h), and check_options.
+/// \throw CLI::ParseError: CLI11's own, CLI::ConfigError for a config file's unknown key (checked
+///        first when the parse fails: a misspelt key may be why), CLI::ValidationError.
+void parse(CLI::App& app, CliOptions& o, int argc, char** argv);
+
 /// After app.parse(): what CLI11 cannot say by itself, conflicts between options and with the
 /// BIND's format; sets o.has_rig. \throw CLI::ValidationError naming the option.
 void check_options(const CLI::App& app, CliOptions& o);

@@ -77,8 +77,7 @@ int main(int argc, char** argv) {
   app.get_formatter()->column_width(36);
   cli::add_options(app, o);
   try {
-    app.parse(argc, argv);
-    cli::check_options(app, o);
+    cli::parse(app, o, argc, argv);
   } catch (const CLI::ParseError& e) {
     return cli::parse_error_exit(app, e, "skinslide");
   }
