@@ -38,6 +38,11 @@ Cases (sources are read at run time; nothing is copied into the repository):
                 5.5.1-2, /usr/share/doc/libcgal-dev/data.tar.gz, data/meshes/hand.off; CGAL's
                 data files carry no notice of their own and the Debian copyright file puts
                 such files under CC0 1.0), bent at the wrist (z = -0.25, bone +z).
+  swing-cesium  a real skin: CesiumMan.glb (QUALITY_DATA/gltf, CC-BY 4.0, Cesium) welded as
+                `quality.py gltf-bind` welds it, posed by its own skin and weights (nodes at
+                their stored transforms = the bind), the left elbow's subtree
+                (Skeleton_arm_joint_L__3_) turned by the swing about the elbow; the limb
+                weights below are not used here (the patch only).
   swing-camel   quadruped-like: CGAL's camel.off (9770 vertices; same package and terms),
                 the front left leg swung at its knee (bone -y).
 Source locations: QUALITY_DATA (default /work/shared/data) for MakeHuman; CGAL_DATA (default
@@ -221,6 +226,8 @@ def pose(V, w, jt, t, n):
     theta = jt.theta0 + jt.theta * p
     phi = jt.phi * math.sin(ph)
     R = rotation(jt.a, theta) @ rotation(jt.d, phi)
+    if getattr(jt, "skin", None) is not None:   # the model's own skin and weights
+        return jt.skin.pose("Skeleton_arm_joint_L__3_", R)
     moved = jt.j + (V - jt.j) @ R.T
     return (1 - w)[:, None] * V + w[:, None] * moved
 
@@ -300,8 +307,121 @@ def cgal_camel():
                           "per the package's copyright file), front left knee")
 
 
+def _local(node):
+    if "matrix" in node:
+        return np.array(node["matrix"], float).reshape(4, 4).T   # glTF: column-major
+    M = np.eye(4)
+    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    M[:3, :3] = R * np.array(node.get("scale", [1, 1, 1]))[None, :]
+    M[:3, 3] = node.get("translation", [0, 0, 0])
+    return M
+
+
+class GltfSkin:
+    """Mesh 0 of a glTF file with its skin: positions welded as `quality.py gltf-bind` welds
+    them (exact equality, numbered by first occurrence; a welded vertex keeps its first
+    occurrence's joints and weights), posed by linear blend skinning from the nodes' own
+    transforms, one joint's subtree turned about that joint."""
+
+    def __init__(self, path):
+        import quality
+        doc, bufs = quality._load_gltf(path)
+        self.doc = doc
+        parent = {}
+        for i, n in enumerate(doc["nodes"]):
+            for c in n.get("children", []):
+                parent[c] = i
+        self.parent = parent
+        G = {}
+
+        def glob_(i):
+            if i not in G:
+                L = _local(doc["nodes"][i])
+                G[i] = glob_(parent[i]) @ L if i in parent else L
+            return G[i]
+        for i in range(len(doc["nodes"])):
+            glob_(i)
+        self.G = G
+        skin = doc["skins"][0]
+        self.joints = skin["joints"]
+        self.ibm = quality._accessor(doc, bufs, skin["inverseBindMatrices"]).reshape(
+            -1, 4, 4).transpose(0, 2, 1).astype(float)
+        index, verts, J, W, tris = {}, [], [], [], []
+        for prim in doc["meshes"][0]["primitives"]:
+            P = quality._accessor(doc, bufs, prim["attributes"]["POSITION"])
+            Jp = quality._accessor(doc, bufs, prim["attributes"]["JOINTS_0"])
+            Wp = quality._accessor(doc, bufs, prim["attributes"]["WEIGHTS_0"])
+            ids = np.empty(len(P), np.int64)
+            for i, p in enumerate(P):
+                key = tuple(float(c) for c in p)
+                k = index.get(key)
+                if k is None:
+                    k = index[key] = len(verts)
+                    verts.append(key)
+                    J.append(Jp[i].astype(np.int64))
+                    W.append(Wp[i].astype(float))
+                ids[i] = k
+            I = quality._accessor(doc, bufs, prim["indices"]).reshape(-1).astype(np.int64) \
+                if "indices" in prim else np.arange(len(P))
+            tris.extend(ids[I].reshape(-1, 3).tolist())
+        self.P = np.array(verts)
+        self.J = np.array(J)
+        self.W = np.array(W)
+        self.W /= self.W.sum(1, keepdims=True)
+        self.faces = tris
+
+    def node(self, name):
+        return next(i for i, n in enumerate(self.doc["nodes"]) if n.get("name") == name)
+
+    def position(self, name):
+        return self.G[self.node(name)][:3, 3].copy()
+
+    def subtree(self, i):
+        out = {i}
+        for c in self.doc["nodes"][i].get("children", []):
+            out |= self.subtree(c)
+        return out
+
+    def pose(self, joint=None, R=None):
+        G = dict(self.G)
+        if joint is not None:
+            i = self.node(joint)
+            p = G[i][:3, 3]
+            M = np.eye(4)
+            M[:3, :3] = R
+            M[:3, 3] = p - R @ p
+            for k in self.subtree(i):
+                G[k] = M @ G[k]
+        mats = np.stack([G[j] @ self.ibm[k] for k, j in enumerate(self.joints)])
+        Ph = np.hstack([self.P, np.ones((len(self.P), 1))])
+        out = np.zeros((len(self.P), 3))
+        for c in range(self.J.shape[1]):
+            out += self.W[:, c:c + 1] * np.einsum("nij,nj->ni", mats[self.J[:, c]], Ph)[:, :3]
+        return out
+
+
+def cesium_elbow():
+    sk = GltfSkin(os.path.join(DATA, "gltf/CesiumMan.glb"))
+    sh, el, wr = (sk.position(n) for n in ("Skeleton_arm_joint_L__4_", "Skeleton_arm_joint_L__3_",
+                                          "Skeleton_arm_joint_L__2_"))
+    d = wr - el
+    L = np.linalg.norm(d)
+    axis = np.cross(el - sh, d)
+    if np.linalg.norm(axis) < 0.05 * L * np.linalg.norm(el - sh):
+        axis = np.cross(d, [0, 0, 1])
+    V = sk.pose()
+    jt = Joint(j=el, d=d, axis=axis, blend=0.2 * L, radius=0.6 * L, patch=0.6 * L,
+               seed=wr + 0.3 * d, theta0=10, theta=70, phi=25)
+    jt.skin = sk
+    return V, sk.faces, jt, ("CesiumMan.glb (CC-BY 4.0, Cesium) with its own skin and weights, "
+                             "left elbow (node Skeleton_arm_joint_L__3_) turned")
+
+
 CASES = {"swing-tube": tube, "swing-elbow": mh_elbow, "swing-finger": mh_finger,
-         "swing-hand": cgal_hand, "swing-camel": cgal_camel}
+         "swing-hand": cgal_hand, "swing-camel": cgal_camel, "swing-cesium": cesium_elbow}
 
 
 # ---------------------------------------------------------------- output

@@ -89,7 +89,7 @@ def _accessor(doc, bufs, index):
     if "sparse" in a or a.get("normalized"):
         raise SystemExit("quality.py: sparse/normalized accessors are not handled here")
     v = doc["bufferViews"][a["bufferView"]]
-    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[a["type"]]
+    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}[a["type"]]
     dt = {5121: np.uint8, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}[a["componentType"]]
     size = np.dtype(dt).itemsize * width
     stride = v.get("byteStride", size)

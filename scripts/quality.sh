@@ -7,7 +7,7 @@
 #                           [--keep DIR]
 #
 #   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face,
-#              swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel
+#              swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
 #   --methods  default: unslid,paper,elastic,corrective-smooth
 #              unslid    the frames as they are (the baseline; same measuring code path)
 #              paper     skinslide --method paper (a binary without --method: its default)
@@ -69,7 +69,7 @@
 #   data-elbow, data-face
 #                the repo's samples: data/<case>/bind.obj, patch_plain.txt, frames/*.obj.
 #                (elbow.0001 is the bind pose itself: counted aside, "(1 at bind)".)
-#   swing-tube, swing-elbow, swing-finger, swing-hand, swing-camel
+#   swing-tube, swing-elbow, swing-finger, swing-hand, swing-camel, swing-cesium
 #                slow swings for popping, written by scripts/make_swings.py (its header has the
 #                sources, licences and the exact rig): one joint of a mesh bent back and forth
 #                by linear blend skinning with smooth weights over one 60-frame period (bend
@@ -78,7 +78,9 @@
 #                elbow: MakeHuman's body (CC0), left elbow; finger: the same body's left middle
 #                finger; hand: CGAL's hand.off (a fist, 1197 vertices), wrist; camel: CGAL's
 #                camel.off (9770 vertices), front left knee (both from Debian's libcgal-demo,
-#                CC0 per its copyright file). Frames swing.0000..0059.
+#                CC0 per its copyright file); cesium: CesiumMan.glb posed by its own skin and
+#                weights, the left elbow turned (the swing's LBS is the model's own there).
+#                Frames swing.0000..0059.
 #
 # Columns, per case and method, over its frames (metrics.py per frame, patch = the case's patch):
 #   flips          sum over frames of metrics `flips` (slid patch triangles facing against the frame)
@@ -120,7 +122,7 @@ REFDIR=${QUALITY_REFERENCE:-/work/shared/reference}
 export QUALITY_REFERENCE=$REFDIR
 
 cases=ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
-cases+=,swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel
+cases+=,swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
 QUALITY_CONVERGED=${QUALITY_CONVERGED:---tolerance 1e-6 --max-iterations 1000 --rotation-fits 10}
 methods=unslid,paper,elastic,corrective-smooth
 methods_given=0
