@@ -9,7 +9,7 @@
 #
 #   --cases    default: every case of scripts/make_stress.py (--list): devil-head, devil-band,
 #              lion-head, head-whole, man-torso, dragon-body, triceratops, bull-neck,
-#              armadillo-dec, knee-needles, elbow-slivers, elephant-cut. The sources, licences
+#              armadillo-dec, knee-needles, elbow-slivers, cow-cut. The sources, licences
 #              and what makes each hard: scripts/make_stress.py's header and tests/bench/stress.md.
 #   --methods  default: elastic,corrective-smooth
 #              elastic   skinslide --method elastic --report (the stops and solves come from the
@@ -64,7 +64,7 @@ set -Eeuo pipefail
 trap 'echo "stress.sh: failed (exit $?): $BASH_COMMAND" >&2' ERR
 
 # The reference's settings: the most thorough the binary has (the lead may change them).
-STRESS_REF_ARGS=${STRESS_REF_ARGS:---tolerance 0 --max-iterations 300 --rotation-fits 10}
+STRESS_REF_ARGS=${STRESS_REF_ARGS:---tolerance 0 --max-iterations 100 --rotation-fits 10}
 STRESS_PROTO_ARGS=${STRESS_PROTO_ARGS:---iters 20 --tol 1e-6}
 STRESS_PROTO_MAX_FREE=${STRESS_PROTO_MAX_FREE:-15000}
 STRESS_PROTO_TIMEOUT=${STRESS_PROTO_TIMEOUT:-1500}
