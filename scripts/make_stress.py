@@ -61,7 +61,8 @@ Cases:
                  (faces with a corner within 0.04 of its length of the top of the back); the
                  whole rest of the animal one patch: a strongly curved chart (a nearly closed
                  surface with legs, horns and tail on a disk); the head and neck bent.
-                 (CGAL's elephant.off, first tried, has genus 2: no cut makes it a disk.)
+                 (CGAL's elephant.off, first tried, is closed with genus 3, Euler
+                 characteristic -4: no small cut makes it a disk.)
 """
 import argparse
 import math
