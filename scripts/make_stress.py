@@ -453,7 +453,8 @@ def main(argv=None):
           "%d frames, bend up to %.0f deg"
           % (a.case, source, extra, len(V), len(faces), len(patch), st["triangles"], len(pv),
              st["min_angle"], st["max_angle"], st["under_1"], st["under_0.1"],
-             st["caps_over_170"], a.frames, amp * (20 + 60 * abs(math.sin(math.pi * a.frames / 8)))))
+             st["caps_over_170"], a.frames,
+             amp * (20 + 60 * abs(math.sin(math.pi * a.frames / 8)))))
     return 0
 
 

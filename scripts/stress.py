@@ -225,7 +225,8 @@ def cmd_reference(a):
     if "prototype" in a.kinds:
         key = sha(file_bytes(a.prototype), a.prototype_args, a.prototype_timeout)
         if nfree > a.prototype_max_free:
-            runs["prototype"] = ({}, "not run: %d free vertices > %d" % (nfree, a.prototype_max_free))
+            runs["prototype"] = ({}, "not run: %d free vertices > %d"
+                                 % (nfree, a.prototype_max_free))
         else:
             spent, done = 0.0, 0
             for n in names:
