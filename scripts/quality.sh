@@ -37,6 +37,9 @@
 #   scripts/deps.sh when a swing case needs it).
 # Needs /usr/bin/python3 with numpy and scipy (apt-get install -y python3-numpy python3-scipy).
 # Exits non-zero as soon as a command fails.
+# Time: the full default run with elastic-converged added took 26.5 min wall (6.8 min of CPU) on
+# a 2-core machine loaded 11-14 by other builds (2026-11-27); the six swings are most of it.
+# --cases swing-tube,swing-hand (the small swings) takes about a minute.
 #
 # Cases (patch files are written as plain face ids by scripts/quality.py, the only syntax the
 # reference's read_patch accepts):
