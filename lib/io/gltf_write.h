@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/mesh_file.h"
+#include "mesh/slid_vertices.h"
 
 namespace skinslide {
 
