@@ -3,7 +3,7 @@
 # leading out of the glTF's folder (climbing, through a symbolic link, absolute, file:,
 # percent-encoded) stops the run with exit 3 and nothing written, whether the glTF is the BIND, a
 # FRAME or an --animation character; a URI with `..` that stays inside is read;
-# --allow-uri-outside admits a sibling tree; images are never opened, only rebased.
+# --allow-uri-outside (or its --config key) admits a sibling tree; images are never opened, only rebased.
 # Writes its own glTFs (python3); needs nothing from ../shared.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/gltf_uri.sh
 set -u
@@ -127,6 +127,10 @@ check "--allow-uri-outside another tree does not" \
   refused 3 "$tmp/s3" "resolves to" --allow-uri-outside "$tmp/tree/other" --patch "$patch" "$tmp/tree/chars/hero.gltf" "$tmp/tree/chars/hero.gltf"
 check "--allow-uri-outside a missing folder is a usage error" \
   refused 2 "$tmp/s4" "--allow-uri-outside" --allow-uri-outside "$tmp/tree/none" --patch "$patch" "$tmp/tree/chars/hero.gltf" "$tmp/tree/chars/hero.gltf"
+printf 'allow-uri-outside = ["%s", "%s"]\n' "$tmp/tree/other" "$tmp/tree/shared" >"$tmp/trees.toml"
+check "--allow-uri-outside as a --config key (a list of folders) admits it too" \
+  "$bin" -q -o "$tmp/s5" --config "$tmp/trees.toml" --patch "$patch" "$tmp/tree/chars/hero.gltf" "$tmp/tree/chars/hero.gltf"
+check "... and its buffer is written" cmp "$tmp/s5/hero.bin" "$tmp/tree/shared/grid.bin"
 
 # Images are rebased, never opened: one is a FIFO (opening it would block), one outside.
 mkfifo "$asset/pipe.png"
