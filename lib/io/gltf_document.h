@@ -2,16 +2,14 @@
 // only io/*.cpp include this header (it pulls in tinygltf; STYLE.md section 1).
 #pragma once
 
-#include <algorithm>
 #include <array>
-#include <cctype>
 #include <cstdint>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
 
+#include "core/file_extension.h"
 #include "core/types.h"
 
 namespace skinslide {
@@ -47,11 +45,6 @@ struct GltfDocument {
 
 /// True when `path` ends in .glb (any case): the reader's MeshFile::format, and what the writer
 /// writes (a GLB, else a .gltf with .bin files).
-inline bool has_glb_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".glb";
-}
+inline bool has_glb_extension(const std::string& path) { return lower_extension(path) == ".glb"; }
 
 }  // namespace skinslide

@@ -1,6 +1,7 @@
 #include "io/gltf_read.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
