@@ -1,0 +1,144 @@
+// The elastic method's convergence measure (lib/elastic/README.md rule 10, stationarity.h):
+// the steepest one-sided descent of a point on the faceted frame surface, exact on hand-made
+// pyramids and planes; a stop named "converged" only where the measure says so.
+#include "elastic/stationarity.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "elastic/relax.h"
+
+namespace skinslide {
+namespace {
+
+// A square fan: the centre 0 and the ring 1..4 at (1,0) (0,1) (-1,0) (0,-1), four triangles.
+struct Fan {
+  Positions3 bind{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0)};
+  std::vector<Triangle> triangles{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}};
+  Chart chart = disk_chart(bind, triangles, {{1, 2, 3, 4}}, 0);
+};
+
+// The fan's centre raised to height h: a pyramid (h > 0), a cup (h < 0), flat (h = 0).
+Positions3 raised(const Fan& fan, double h) {
+  Positions3 frame = fan.bind;
+  frame[0].z() = h;
+  return frame;
+}
+
+double at_centre(const Fan& fan, const Positions3& frame, const Vec3& g) {
+  const FrameSurface surface = frame_surface(fan.chart, frame);
+  return one_sided_descent(surface, 0, at_node(fan.chart, 0), g);
+}
+
+TEST(OneSidedDescent, AtAPyramidsApexExactly) {
+  const Fan fan;
+  const Positions3 pyramid = raised(fan, 1);
+  // Pulled down (the energy grows upwards): straight down a face, whose plane x + y + z = 1 (and
+  // its mirror images) has the steepest slope sqrt(2/3) of a unit vertical gradient.
+  EXPECT_NEAR(at_centre(fan, pyramid, Vec3(0, 0, 1)), std::sqrt(2.0 / 3), 1e-14);
+  // Pulled up: every direction leaves the apex downwards, none lowers the energy.
+  EXPECT_EQ(at_centre(fan, pyramid, Vec3(0, 0, -1)), 0);
+  // Pulled towards -x: the faces' own steepest directions leave their wedges; the best is the
+  // edge to (-1, 0, 0), direction (-1, 0, -1) / sqrt 2.
+  EXPECT_NEAR(at_centre(fan, pyramid, Vec3(1, 0, 0)), std::sqrt(0.5), 1e-14);
+  // In a cup the same pull climbs a face: the wedge (-1,0,1) (0,-1,1)... the edge again.
+  EXPECT_NEAR(at_centre(fan, raised(fan, -1), Vec3(1, 0, 0)), std::sqrt(0.5), 1e-14);
+}
+
+TEST(OneSidedDescent, OnAPlaneItIsTheTangentGradientsLength) {
+  const Fan fan;
+  const FrameSurface flat = frame_surface(fan.chart, fan.bind);
+  const Vec3 g(3, 4, 12);  // |(3, 4)| = 5 in the plane z = 0
+  EXPECT_NEAR(one_sided_descent(flat, 0, at_node(fan.chart, 0), g), 5, 1e-14);
+  // Inside a triangle, on its edge, near its corner: the plane is one facet, the same 5.
+  const Index t = 0;
+  for (const std::array<double, 3>& w :
+       {std::array<double, 3>{0.2, 0.3, 0.5}, {0.5, 0.5, 0}, {0.9995, 0.0002, 0.0003}})
+    EXPECT_NEAR(one_sided_descent(flat, -1, ChartPoint{t, w}, g), 5, 1e-14);
+  // A gradient normal to the surface: stationary.
+  EXPECT_EQ(one_sided_descent(flat, -1, ChartPoint{t, {0.2, 0.3, 0.5}}, Vec3(0, 0, 7)), 0);
+}
+
+TEST(OneSidedDescent, OnARidgeEdgeBothSidesCount) {
+  const Fan fan;
+  // A roof: the centre and (0, +-1) raised to 1, the ridge along y; the point halfway along the
+  // edge 0-2 of triangles 0 and 1 is on the ridge.
+  Positions3 roof = fan.bind;
+  roof[0].z() = roof[2].z() = roof[4].z() = 1;
+  const FrameSurface surface = frame_surface(fan.chart, roof);
+  const ChartPoint mid{0, {0.5, 0, 0.5}};
+  // Pulled up: both slopes go down, neither helps; along the ridge g is normal: stationary.
+  EXPECT_EQ(one_sided_descent(surface, -1, mid, Vec3(0, 0, -1)), 0);
+  // Pulled down: down either slope, (+-1, 0, -1) / sqrt 2.
+  EXPECT_NEAR(one_sided_descent(surface, -1, mid, Vec3(0, 0, 1)), std::sqrt(0.5), 1e-14);
+  // Pulled along +x: inside triangle 0 (z = 1 - x) it climbs back towards the ridge, sqrt 1/2.
+  // On the edge triangle 0 offers only its own half (x >= 0), where nothing goes down: the
+  // descent is triangle 1's (z = 1 + x), down its slope, sqrt 1/2 again, found only across the
+  // edge. Within a thousandth of the edge (kOnEdge) the point is on it.
+  EXPECT_NEAR(one_sided_descent(surface, -1, ChartPoint{0, {0.4, 0.2, 0.4}}, Vec3(1, 0, 0)),
+              std::sqrt(0.5), 1e-14);
+  for (const double off : {0.0, 0.0005})
+    EXPECT_NEAR(one_sided_descent(surface, -1, ChartPoint{0, {0.5, off, 0.5 - off}}, Vec3(1, 0, 0)),
+                std::sqrt(0.5), 1e-14);
+  // Pulled along +y on the edge (along the level ridge): g is along the edge, straight back.
+  EXPECT_NEAR(one_sided_descent(surface, -1, mid, Vec3(0, 1, 0)), 1, 1e-14);
+}
+
+TEST(OneSidedDescent, AFlatFacetIsNotLeftThrough) {
+  const Fan fan;
+  Positions3 crushed = fan.bind;
+  crushed[1] = crushed[2] = crushed[0];  // triangle 0 has no area
+  const FrameSurface surface = frame_surface(fan.chart, crushed);
+  EXPECT_EQ(one_sided_descent(surface, -1, ChartPoint{0, {0.2, 0.3, 0.5}}, Vec3(1, 2, 3)), 0);
+}
+
+// A bent fan of two rings: the measure and the stop of relax_patch agree.
+TEST(RelaxStop, ConvergedOnlyWhereTheMeasureSaysSo) {
+  Positions3 bind;
+  std::vector<Triangle> triangles;
+  const int n = 12;
+  bind.push_back(Vec3(0, 0, 0));
+  for (int ring = 1; ring <= 2; ++ring)
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * M_PI * (k + 0.5 * (ring - 1)) / n;
+      bind.push_back(ring * Vec3(std::cos(a), std::sin(a), 0));
+    }
+  for (int k = 0; k < n; ++k) {
+    const Index a = 1 + k, b = 1 + (k + 1) % n, c = 1 + n + k, d = 1 + n + (k + 1) % n;
+    triangles.push_back({0, a, b});
+    triangles.push_back({a, c, d});
+    triangles.push_back({a, d, b});
+  }
+  std::vector<Index> outer, movable;
+  for (int k = 0; k < n; ++k) outer.push_back(1 + n + k);
+  for (Index v = 0; v <= n; ++v) movable.push_back(v);
+  const ElasticSetup setup = elastic_setup(bind, triangles, {outer}, 0, movable);
+  Positions3 frame = bind;
+  for (Vec3& p : frame) p = Vec3(p.x() * (p.x() > 0 ? 1.6 : 1.0), p.y(), 0.3 * p.x() * p.x());
+  for (const double convergence : {0.0, 1e-2, 1.0}) {
+    ElasticOptions options;
+    options.convergence = convergence;
+    const ElasticResult r = relax_patch(setup, frame, options);
+    ASSERT_GT(r.energy_before, 0);
+    EXPECT_GT(r.gain_at_frame, 0) << "the frame is not stationary";
+    EXPECT_GE(r.gain_left, 0);
+    const bool measured = r.gain_left <= convergence * r.energy_before;
+    EXPECT_EQ(r.stop == ElasticStop::Converged, measured) << stop_name(r.stop);
+    if (convergence == 1.0) {
+      EXPECT_EQ(r.stop, ElasticStop::Converged);
+    }
+    if (convergence == 0.0) {
+      EXPECT_NE(r.stop, ElasticStop::Converged) << "a faceted slide keeps some first-order gain";
+    }
+  }
+  // One step only: the round ends at its limit, and says so.
+  ElasticOptions one;
+  one.max_iterations = 1;
+  one.rotation_fits = 1;
+  one.convergence = 0;
+  EXPECT_EQ(relax_patch(setup, frame, one).stop, ElasticStop::IterationLimit);
+}
+
+}  // namespace
+}  // namespace skinslide
