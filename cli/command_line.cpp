@@ -166,6 +166,10 @@ void add_run(CLI::App& app, CliOptions& o) {
                "Write every good frame and name every bad one, instead of stopping at the first "
                "(exit code: the first bad frame's)")
       ->group(run);
+  app.add_flag("--require-converged", o.run.require_converged,
+               "Fail a frame (exit 5, naming frame and patch) when a patch's elastic slide did "
+               "not converge, instead of writing it and logging 'not converged'")
+      ->group(run);
   app.add_flag("--no-slide", o.run.no_slide,
                "Read, check and write every frame unchanged, without sliding: the I/O floor of a "
                "run, for timing")

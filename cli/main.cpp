@@ -54,8 +54,11 @@ int run_and_print(const cli::CliOptions& o) {
   const RunResult result = skinslide::run(cli::run_options(o), events);
   const size_t failed = result.failures.size();
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
-    std::fprintf(stderr, "skinslide: %zu frames %s%s in %.2f s -> %s\n", result.frames - failed,
+    std::fprintf(stderr, "skinslide: %zu frames %s%s%s in %.2f s -> %s\n", result.frames - failed,
                  o.run.no_slide ? "copied" : "slid",
+                 result.not_converged
+                     ? (" (" + std::to_string(result.not_converged) + " not converged)").c_str()
+                     : "",
                  failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
                  progress->elapsed_seconds(), o.run.output.c_str());
   return failed ? exit_code(result.failures.front().kind()) : 0;

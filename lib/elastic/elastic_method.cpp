@@ -33,6 +33,10 @@ Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& p
   return f;
 }
 
+double first_order_share(const ElasticReport& r) {
+  return r.energy_before > 0 ? r.gain_left / r.energy_before : 0.0;
+}
+
 Figures report_figures(const ElasticReport& r) {
   return {{"energy_before", r.energy_before},
           {"energy_after", r.energy_after},
@@ -40,6 +44,9 @@ Figures report_figures(const ElasticReport& r) {
           {"solves", static_cast<long long>(r.solves)},
           {"solve_iterations", static_cast<long long>(r.solve_iterations)},
           {"stop", r.stop.empty() ? std::string("skipped") : r.stop},
+          {"converged", r.converged},
+          {"first_order_gain", r.gain_left},
+          {"first_order_share", first_order_share(r)},
           {"held", static_cast<long long>(r.held)},
           {"flips", static_cast<long long>(r.slid_flips)}};
 }
@@ -48,10 +55,19 @@ void ElasticTotals::add(const ElasticReport& r) {
   iterations += r.iterations;
   held += r.held;
   flips += r.slid_flips;
+  not_converged += r.converged ? 0 : 1;
 }
 
 Figures ElasticTotals::figures() const {
-  return {{"iterations", iterations}, {"held", held}, {"flips", flips}};
+  return {{"iterations", iterations},
+          {"held", held},
+          {"flips", flips},
+          {"not_converged", not_converged}};
+}
+
+std::string convergence_text(const ElasticReport& r) {
+  if (r.stop == "at rest" || r.stop.empty()) return r.stop;
+  return r.stop + ", first-order gain left " + log_number(100 * first_order_share(r)) + "%";
 }
 
 std::string frame_summary(const std::vector<Patch>& patches,
@@ -59,6 +75,7 @@ std::string frame_summary(const std::vector<Patch>& patches,
                           const std::string& max_slide) {
   int iterations = 0, flips = 0;
   double before = 0, after = 0;
+  std::string unconverged;
   for (std::size_t p = 0; p < patches.size(); ++p) {
     if (patches[p].skipped) continue;
     const ElasticReport& r = report(p);
@@ -66,14 +83,17 @@ std::string frame_summary(const std::vector<Patch>& patches,
     flips += r.slid_flips;
     before += r.energy_before;
     after += r.energy_after;
+    if (!r.converged)
+      unconverged += (unconverged.empty() ? ", not converged: patch " : ", patch ") +
+                     std::to_string(p) + " (" + convergence_text(r) + ")";
   }
   return "elastic " + std::to_string(iterations) + " it, energy left " +
          (before > 0 ? log_number(100 * after / before) + "%" : std::string("0")) + ", flips " +
-         std::to_string(flips) + max_slide;
+         std::to_string(flips) + max_slide + unconverged;
 }
 
 std::string patch_summary(const ElasticReport& r) {
-  return "elastic " + std::to_string(r.iterations) + " it (" + r.stop + "), energy " +
+  return "elastic " + std::to_string(r.iterations) + " it (" + convergence_text(r) + "), energy " +
          log_number(r.energy_before) + " -> " + log_number(r.energy_after) + ", held " +
          std::to_string(r.held) + ", flips " + std::to_string(r.slid_flips);
 }

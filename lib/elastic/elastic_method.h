@@ -39,12 +39,19 @@ std::string method_label(const ElasticMethod& method);
 Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& patch);
 
 /// A patch's figures in one frame: energy_before, energy_after, iterations, solves,
-/// solve_iterations, stop, held, flips.
+/// solve_iterations, stop, converged, first_order_gain, first_order_share, held, flips.
 Figures report_figures(const ElasticReport& report);
 
-/// The report's sums over every patch of every frame: iterations, held, flips.
+/// The first-order gain left as a share of the frame's energy (0 without energy).
+double first_order_share(const ElasticReport& report);
+
+/// A patch's stop and its measure for the log: "small gain, first-order gain left 3.1%".
+std::string convergence_text(const ElasticReport& report);
+
+/// The report's sums over every patch of every frame: iterations, held, flips, not_converged.
 struct ElasticTotals {
   long long iterations = 0, held = 0, flips = 0;
+  long long not_converged = 0;  ///< patch-frames whose stop is not "converged" or "at rest"
   void add(const ElasticReport& report);
   Figures figures() const;
 };

@@ -16,6 +16,10 @@ const OptionTable<ElasticOptions>& option_table<ElasticOptions>() {
        "Elastic: a round stops at the first step that lowers its energy by less than this "
        "fraction of its starting energy",
        NumberOption<O, double>{&O::tolerance, 0.0, 1.0}},
+      {"convergence",
+       "Elastic: a frame has converged when the first-order gain left is at most this fraction "
+       "of its energy; any other stop is logged as not converged",
+       NumberOption<O, double>{&O::convergence, 0.0, 1.0}},
   };
   return table;
 }

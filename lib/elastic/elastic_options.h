@@ -7,7 +7,7 @@
 
 namespace skinslide {
 
-/// --rotation-fits, --max-iterations, --tolerance.
+/// --rotation-fits, --max-iterations, --tolerance, --convergence.
 template <>
 const OptionTable<ElasticOptions>& option_table<ElasticOptions>();
 

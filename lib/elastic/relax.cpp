@@ -8,6 +8,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "elastic/line_search.h"
+#include "elastic/stationarity.h"
 #include "elastic/surface_map.h"
 
 namespace skinslide {
@@ -35,7 +36,8 @@ class Relaxation {
         s_(scale),
         result_(result),
         patch_{surface, setup.movable, setup.movable_slot},
-        m_(static_cast<Index>(setup.movable.size())) {
+        m_(static_cast<Index>(setup.movable.size())),
+        stiffness_(metric_diagonal(setup.metric)) {
     state_.node_uv = setup.chart.uv;
     state_.where.resize(m_);
     state_.on_node.assign(m_, 1);
@@ -51,6 +53,12 @@ class Relaxation {
   void fit_rotations() {
     R_ = fitted_rotations(mesh_, state_.x, surface_.normals);
     E_ = held_rotation_energy(mesh_, state_.x, s_, R_, &g_);
+  }
+
+  // Rule 10's first-order measure at the current state, for the rotations last fitted (which
+  // minimise the energy there: g_ is the ARAP energy's own gradient).
+  Stationarity measure() const {
+    return stationarity(surface_, setup_.movable, state_, g_, stiffness_);
   }
 
   // One step: false when no step lowers the energy, or the direction could not be solved.
@@ -164,6 +172,7 @@ class Relaxation {
   ElasticResult& result_;
   const LineSearchPatch patch_;
   const Index m_;
+  const std::vector<double> stiffness_;  // K_ii per movable vertex
   SlideState state_;
   std::vector<Mat32> R_;  // the rotations of the current round
   Positions3 g_;          // the held-rotation energy's gradient at state_.x
@@ -180,24 +189,36 @@ class Relaxation {
 };
 
 // Rule 6: the rounds of ARAP's local/global alternation, each relaxed until a step gains less
-// than the tolerance.
+// than the tolerance; rule 10: the stop, from the measure and how the last round ended.
 void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, ElasticResult& result) {
+  ElasticStop last_round = ElasticStop::SmallGain;
   for (int round = 0; round < options.rotation_fits; ++round) {
     relaxation.fit_rotations();
+    if (round == 0) result.gain_at_frame = relaxation.measure().gain;
     const double E_round = relaxation.energy();
     int it = 0;
+    last_round = ElasticStop::IterationLimit;
     for (; it < options.max_iterations; ++it) {
       const double E_old = relaxation.energy();
-      if (!relaxation.step()) break;
+      if (!relaxation.step()) {
+        last_round = ElasticStop::NoStep;
+        break;
+      }
       ++result.iterations;
-      if (E_old - relaxation.energy() < options.tolerance * E_round) break;
+      if (E_old - relaxation.energy() < options.tolerance * E_round) {
+        last_round = ElasticStop::SmallGain;
+        break;
+      }
     }
     if (relaxation.failed()) {
-      result.stop = ElasticStop::SolveFailed;
-      return;
+      last_round = ElasticStop::SolveFailed;
+      break;
     }
-    if (it == options.max_iterations) result.stop = ElasticStop::IterationLimit;
   }
+  relaxation.fit_rotations();
+  result.gain_left = relaxation.measure().gain;
+  const bool stationary = result.gain_left <= options.convergence * result.energy_before;
+  result.stop = stationary && !relaxation.failed() ? ElasticStop::Converged : last_round;
 }
 
 }  // namespace
@@ -208,14 +229,22 @@ const char* stop_name(ElasticStop stop) {
       return "at rest";
     case ElasticStop::Converged:
       return "converged";
+    case ElasticStop::SmallGain:
+      return "small gain";
     case ElasticStop::IterationLimit:
       return "limit";
+    case ElasticStop::NoStep:
+      return "no step";
     case ElasticStop::NoDescent:
       return "no descent";
     case ElasticStop::SolveFailed:
       return "solve failed";
   }
   return "unknown";
+}
+
+bool stop_converged(ElasticStop stop) {
+  return stop == ElasticStop::AtRest || stop == ElasticStop::Converged;
 }
 
 ArapTriangles arap_triangles(const ElasticSetup& setup) {
@@ -295,6 +324,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     for (Index i = 0; i < m; ++i) at_start(i);
     result.energy_after = result.energy_before;
     result.stop = ElasticStop::NoDescent;
+    result.gain_left = result.gain_at_frame;
     return result;
   }
   for (Index i = 0; i < m; ++i) {

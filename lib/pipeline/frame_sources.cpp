@@ -15,16 +15,25 @@
 namespace skinslide {
 namespace {
 
-// slide_frame, with the frame named in its errors.
+// slide_frame, with the frame named in its errors; with --require-converged a patch that did
+// not converge fails the frame before anything of it is written.
 FrameResult slide_named(const BindSetup& setup, const RunOptions& o, const Positions3& positions,
                         const std::string& name) {
+  FrameResult result;
   try {
-    return slide_frame(setup, positions,
-                       {.id_image_size = o.dump_dir.empty() ? 0 : o.lookup_size,
-                        .edge_spread = !o.report.empty()});
+    result = slide_frame(setup, positions,
+                         {.id_image_size = o.dump_dir.empty() ? 0 : o.lookup_size,
+                          .edge_spread = !o.report.empty()});
   } catch (const Error& e) {
     throw Error(e.kind(), name + ": " + e.what());
   }
+  if (o.require_converged)
+    for (size_t p = 0; p < result.patches.size(); ++p)
+      if (const std::string fault = convergence_fault(result.patches[p].method); !fault.empty())
+        throw Error(ErrorKind::Numeric, name + ": patch " + std::to_string(p) +
+                                            ": did not converge (" + fault +
+                                            "; --require-converged)");
+  return result;
 }
 
 // A frame's dumps and previews, named after `named_after`'s stem. Written before the slid mesh,
@@ -43,17 +52,19 @@ void write_frame_pictures(const BindSetup& setup, const RunOptions& o,
 }
 
 // The frame's log lines, then its patches handed to the report's record (their nets dropped).
-std::vector<LogLine> finish_frame(const BindSetup& setup, FrameResult& result,
+FrameOutcome finish_frame(const BindSetup& setup, FrameResult& result,
                                   const std::string& label, const std::string& out_path,
                                   double read_seconds, double write_seconds, ReportFrame* record) {
-  std::vector<LogLine> lines = frame_lines(setup, result, label, out_path);
+  FrameOutcome outcome{frame_lines(setup, result, label, out_path)};
+  for (const PatchFrameReport& p : result.patches)
+    outcome.converged = outcome.converged && convergence_fault(p.method).empty();
   if (record)
     record_frame(*record, label, out_path, read_seconds, write_seconds, std::move(result.patches));
-  return lines;
+  return outcome;
 }
 
 // Reads, checks, slides and writes one frame; returns the log lines for it.
-std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, const RunOptions& o,
+FrameOutcome run_frame(const BindSetup& setup, const MeshFile& bind, const RunOptions& o,
                                const std::string& frame_path, const std::string& out_path,
                                ReportFrame* record) {
   auto t0 = Clock::now();
@@ -63,8 +74,8 @@ std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, con
   const double read_seconds = seconds_since(t0);
   if (o.no_slide) {
     write_slid_mesh_file(frame, SlidVertices{}, out_path);
-    return {
-        {LogLevel::Info, "skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path}};
+    return {{{LogLevel::Info,
+              "skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path}}};
   }
   FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
   write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
@@ -90,7 +101,7 @@ void write_cache_frame(const MeshFile& bind, const RunOptions& o, CacheSample fr
 }
 
 // Sample k of a point cache: read, slid and written (write_cache_frame).
-std::vector<LogLine> run_cache_frame(const BindSetup& setup, const MeshFile& bind,
+FrameOutcome run_cache_frame(const BindSetup& setup, const MeshFile& bind,
                                      const CacheFrames& cache, const RunOptions& o, size_t k,
                                      const std::string& out_path, CacheSlot slot,
                                      ReportFrame* record) {
@@ -108,12 +119,12 @@ std::vector<LogLine> run_cache_frame(const BindSetup& setup, const MeshFile& bin
   t0 = Clock::now();
   write_cache_frame(bind, o, std::move(frame), positions, result.slid, out_path, slot, label);
   if (o.no_slide)
-    return {{LogLevel::Info, "skinslide: " + label + ": unchanged (--no-slide) -> " + out_path}};
+    return {{{LogLevel::Info, "skinslide: " + label + ": unchanged (--no-slide) -> " + out_path}}};
   return finish_frame(setup, result, label, out_path, read_seconds, seconds_since(t0), record);
 }
 
 // Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB, or into a cache.
-std::vector<LogLine> run_rig_frame(const BindSetup& setup, const MeshFile& character,
+FrameOutcome run_rig_frame(const BindSetup& setup, const MeshFile& character,
                                    const RigClip& clip, const RunOptions& o, size_t k,
                                    const std::string& out_path, CacheSlot slot,
                                    ReportFrame* record) {
@@ -169,9 +180,9 @@ const std::string& frame_label(const RunOptions& o, const FrameSource& source, s
   return source.cache.cache ? source.cache.names[i] : o.frames[i];
 }
 
-std::vector<LogLine> run_source_frame(const BindSetup& setup, const MeshFile& bind,
-                                      const FrameSource& source, const RunOptions& o, size_t i,
-                                      CacheSlot slot, ReportFrame* record) {
+FrameOutcome run_source_frame(const BindSetup& setup, const MeshFile& bind,
+                              const FrameSource& source, const RunOptions& o, size_t i,
+                              CacheSlot slot, ReportFrame* record) {
   const std::string& out = source.plan.outputs[i];
   if (o.rig) return run_rig_frame(setup, bind, source.clip, o, i, out, slot, record);
   if (source.cache.cache)

@@ -51,9 +51,16 @@ struct CacheSlot {
   std::size_t sample = 0;
 };
 
-/// Frame i of the run: read (or posed), slid and written; its log lines. With `record`, the
-/// report's record of it. \throw Error naming the frame; nothing of it is written then.
-std::vector<LogLine> run_source_frame(const BindSetup& setup, const MeshFile& bind,
+/// What became of one frame: its log lines, and whether every patch's slide converged.
+struct FrameOutcome {
+  std::vector<LogLine> lines;
+  bool converged = true;
+};
+
+/// Frame i of the run: read (or posed), slid and written. With `record`, the report's record of
+/// it. \throw Error naming the frame; nothing of it is written then. With --require-converged a
+/// patch that did not converge is such an error (Numeric), naming the patch and its stop.
+FrameOutcome run_source_frame(const BindSetup& setup, const MeshFile& bind,
                                       const FrameSource& source, const RunOptions& o, std::size_t i,
                                       CacheSlot slot, ReportFrame* record);
 

@@ -118,6 +118,11 @@ std::string frame_summary(const MethodSetup& method, const std::vector<Patch>& p
                     method);
 }
 
+std::string convergence_fault(const MethodReport& report) {
+  const auto* elastic = std::get_if<ElasticReport>(&report);
+  return elastic && !elastic->converged ? convergence_text(*elastic) : std::string();
+}
+
 std::string patch_summary(const MethodSetup& method, std::size_t p, const MethodReport& report) {
   return std::visit(
       Each{

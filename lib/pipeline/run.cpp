@@ -39,7 +39,8 @@ void make_output_dir(const std::string& dir) {
 std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunEvents& events,
                                                  const BindSetup& setup, const MeshFile& bind,
                                                  const FrameSource& source, CacheWriter* cache_out,
-                                                 unsigned threads, RunReport& report) {
+                                                 unsigned threads, RunReport& report,
+                                                 std::atomic<size_t>& not_converged) {
   const std::vector<size_t>& chosen = source.plan.chosen;
   const size_t count = chosen.size();
   const auto done = [&](size_t j, std::vector<LogLine> lines) {
@@ -56,7 +57,9 @@ std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunE
       const CacheSlot slot{cache_out, j};  // the chosen frames are one run of samples
       try {
         ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
-        done(j, run_source_frame(setup, bind, source, o, i, slot, record));
+        FrameOutcome outcome = run_source_frame(setup, bind, source, o, i, slot, record);
+        if (!outcome.converged) ++not_converged;
+        done(j, std::move(outcome.lines));
         continue;
       } catch (const Error& e) {
         errors[j] = std::make_unique<Error>(e);
@@ -141,8 +144,9 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
                              " at a time" +
                              (o.threads == 0 ? " (-j 0: the cores this task may use)" : "")});
   if (events.frames_begin) events.frames_begin(count);
-  std::vector<std::unique_ptr<Error>> errors =
-      slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report);
+  std::atomic<size_t> not_converged{0};
+  std::vector<std::unique_ptr<Error>> errors = slide_frames(
+      o, events, setup, bind, source, cache_out.get(), threads, report, not_converged);
   if (events.frames_end) events.frames_end();
   // A cache has no holes: it appears only when every chosen frame is in it.
   const bool all_written =
@@ -153,6 +157,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
     if (!folder.empty()) sync_folder(folder);
   RunResult result;
   result.frames = count;
+  result.not_converged = not_converged;
   for (const auto& e : errors)
     if (e) {
       // The first bad frame in list order decides the exit code.

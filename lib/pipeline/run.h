@@ -37,6 +37,7 @@ struct RunEvents {
 struct RunResult {
   std::size_t frames = 0;       ///< frames --frames selected (written + failed)
   std::vector<Error> failures;  ///< keep_going: each failed frame's error (logged), frame order
+  std::size_t not_converged = 0;  ///< frames written with a patch that did not converge
 };
 
 /// Runs it all: plans the outputs (plan_frames / plan_rig_frames), reads the bind and the patch

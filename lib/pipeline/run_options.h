@@ -55,6 +55,9 @@ struct RunOptions {
   unsigned threads = 0;      ///< frames (and patches) processed at once; 0 = usable_cores()
   std::string frame_ranges;  ///< --frames (pipeline/frame_ranges.h); empty = every frame
   bool keep_going = false;   ///< write every good frame and name every bad one
+  /// A patch that did not converge (elastic stops other than "converged" and "at rest") fails
+  /// its frame (exit 5) instead of being logged as not converged.
+  bool require_converged = false;
   bool no_slide = false;     ///< read, check and write every frame unchanged (not with `rig`)
 };
 
