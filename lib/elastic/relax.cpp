@@ -36,8 +36,7 @@ class Relaxation {
         s_(scale),
         result_(result),
         patch_{surface, setup.movable, setup.movable_slot},
-        m_(static_cast<Index>(setup.movable.size())),
-        stiffness_(metric_diagonal(setup.metric)) {
+        m_(static_cast<Index>(setup.movable.size())) {
     state_.node_uv = setup.chart.uv;
     state_.where.resize(m_);
     state_.on_node.assign(m_, 1);
@@ -57,9 +56,7 @@ class Relaxation {
 
   // Rule 10's first-order measure at the current state, for the rotations last fitted (which
   // minimise the energy there: g_ is the ARAP energy's own gradient).
-  Stationarity measure() const {
-    return stationarity(surface_, setup_.movable, state_, g_, stiffness_);
-  }
+  double measure() const { return stationarity(surface_, setup_.movable, state_, g_, setup_.metric); }
 
   // One step: false when no step lowers the energy, or the direction could not be solved.
   bool step() {
@@ -172,7 +169,6 @@ class Relaxation {
   ElasticResult& result_;
   const LineSearchPatch patch_;
   const Index m_;
-  const std::vector<double> stiffness_;  // K_ii per movable vertex
   SlideState state_;
   std::vector<Mat32> R_;  // the rotations of the current round
   Positions3 g_;          // the held-rotation energy's gradient at state_.x
@@ -194,7 +190,7 @@ void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, Elastic
   ElasticStop last_round = ElasticStop::SmallGain;
   for (int round = 0; round < options.rotation_fits; ++round) {
     relaxation.fit_rotations();
-    if (round == 0) result.gain_at_frame = relaxation.measure().gain;
+    if (round == 0) result.gain_at_frame = relaxation.measure();
     const double E_round = relaxation.energy();
     int it = 0;
     last_round = ElasticStop::IterationLimit;
@@ -216,7 +212,7 @@ void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, Elastic
     }
   }
   relaxation.fit_rotations();
-  result.gain_left = relaxation.measure().gain;
+  result.gain_left = relaxation.measure();
   const bool stationary = result.gain_left <= options.convergence * result.energy_before;
   result.stop = stationary && !relaxation.failed() ? ElasticStop::Converged : last_round;
 }

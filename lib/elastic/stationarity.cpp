@@ -25,20 +25,30 @@ struct Sector {
   int rays = 0;
 };
 
-// The least g . w over unit w in the sector (<= 0 when some direction goes down, else 0 or more).
-double lowest_slope(const Sector& s, const Vec3& g) {
+// The steepest way down found so far: the least g . w over unit w, and that w.
+struct Lowest {
+  double slope = 0;
+  Vec3 direction = Vec3::Zero();
+  void offer(double s, const Vec3& w) {
+    if (s < slope) {
+      slope = s;
+      direction = w;
+    }
+  }
+};
+
+// Offers the least g . w over unit w in the sector.
+void lowest_slope(const Sector& s, const Vec3& g, Lowest& lowest) {
   const Vec3 n = s.normal.normalized();
   const Vec3 h = g - n * n.dot(g);
-  double lowest = 0;
   if (h.norm() > 0) {
     const Vec3 w = -h / h.norm();
     bool inside = true;
     for (int k = 0; k < s.cuts; ++k) inside = inside && w.dot(s.inward[k]) >= 0;
-    if (inside) return -h.norm();
+    if (inside) return lowest.offer(-h.norm(), w);
   }
   for (int k = 0; k < s.rays; ++k)
-    if (s.ray[k].norm() > 0) lowest = std::min(lowest, g.dot(s.ray[k]) / s.ray[k].norm());
-  return lowest;
+    if (s.ray[k].norm() > 0) lowest.offer(g.dot(s.ray[k]) / s.ray[k].norm(), s.ray[k].normalized());
 }
 
 bool flat(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -76,8 +86,8 @@ bool edge_sector(const FrameSurface& surface, Index t, int k, Sector& out) {
 
 }  // namespace
 
-double one_sided_descent(const FrameSurface& surface, Index node, const ChartPoint& where,
-                         const Vec3& g) {
+Vec3 steepest_descent(const FrameSurface& surface, Index node, const ChartPoint& where,
+                      const Vec3& g) {
   const Chart& chart = surface.chart;
   const Index t = where.triangle;
   int small = 0, corner = -1, edge = -1;
@@ -89,55 +99,62 @@ double one_sided_descent(const FrameSurface& surface, Index node, const ChartPoi
       corner = k;
     }
   if (node < 0 && small >= 2) node = chart.triangles[t][corner];
-  double lowest = 0;
+  Lowest lowest;
   Sector s;
   if (node >= 0) {
     for (Index c = chart.corner_start[node]; c < chart.corner_start[node + 1]; ++c) {
       const Index u = chart.corner_triangles[c];
       const Triangle& tri = chart.triangles[u];
       const int k = tri[0] == node ? 0 : tri[1] == node ? 1 : 2;
-      if (corner_sector(surface, u, k, s)) lowest = std::min(lowest, lowest_slope(s, g));
+      if (corner_sector(surface, u, k, s)) lowest_slope(s, g, lowest);
     }
-    return -lowest;
+    return -lowest.slope * lowest.direction;
   }
   if (small == 0) {
     const Triangle& tri = chart.triangles[t];
     const Vec3 &a = surface.frame[tri[0]], &b = surface.frame[tri[1]], &c = surface.frame[tri[2]];
-    if (flat(a, b, c)) return 0;
+    if (flat(a, b, c)) return Vec3::Zero();
     s.normal = (b - a).cross(c - a);
-    return -std::min(0.0, lowest_slope(s, g));
+    lowest_slope(s, g, lowest);
+    return -lowest.slope * lowest.direction;
   }
-  if (edge_sector(surface, t, edge, s)) lowest = std::min(lowest, lowest_slope(s, g));
+  if (edge_sector(surface, t, edge, s)) lowest_slope(s, g, lowest);
   const Index across = chart.neighbour[t][edge];
   if (across >= 0 && across < chart.patch_triangle_count) {
     const Triangle& o = chart.triangles[across];
     const Index a = chart.triangles[t][(edge + 1) % 3];
     const Index b = chart.triangles[t][(edge + 2) % 3];
     for (int k = 0; k < 3; ++k)
-      if (o[k] != a && o[k] != b && edge_sector(surface, across, k, s))
-        lowest = std::min(lowest, lowest_slope(s, g));
+      if (o[k] != a && o[k] != b && edge_sector(surface, across, k, s)) lowest_slope(s, g, lowest);
   }
-  return -lowest;
+  return -lowest.slope * lowest.direction;
 }
 
-Stationarity stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
-                          const SlideState& state, const Positions3& gradient,
-                          const std::vector<double>& stiffness) {
-  Stationarity out;
-  double worst = 0;
-  for (size_t i = 0; i < movable.size(); ++i) {
+double one_sided_descent(const FrameSurface& surface, Index node, const ChartPoint& where,
+                         const Vec3& g) {
+  return steepest_descent(surface, node, where, g).norm();
+}
+
+double stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
+                    const SlideState& state, const Positions3& gradient,
+                    const ElasticMetric& metric) {
+  const Index m = static_cast<Index>(movable.size());
+  // The descents by coordinate, (x, y) then (z, 0): K x I3 solved as K on two 2-columns.
+  Positions2 xy(m), z0(m), work;
+  for (Index i = 0; i < m; ++i) {
     const Index v = movable[i];
-    if (!(stiffness[i] > 0)) continue;
-    const double rate =
-        one_sided_descent(surface, state.on_node[i] ? v : -1, state.where[i], gradient[v]);
-    const double share = rate * rate / (2 * stiffness[i]);
-    out.gain += share;
-    if (share > worst) {
-      worst = share;
-      out.worst = v;
-    }
+    const Vec3 d = steepest_descent(surface, state.on_node[i] ? v : -1, state.where[i], gradient[v]);
+    xy[i] = Vec2(d.x(), d.y());
+    z0[i] = Vec2(d.z(), 0);
   }
-  return out;
+  if (m == 0) return 0;
+  double gain = 0;
+  for (Positions2* b : {&xy, &z0}) {
+    Positions2 solved = *b;
+    cholesky_solve(metric.factor, solved, work);
+    for (Index i = 0; i < m; ++i) gain += 0.5 * (*b)[i].dot(solved[i]);
+  }
+  return gain;
 }
 
 }  // namespace skinslide

@@ -119,14 +119,6 @@ ElasticMetric elastic_metric(const ArapTriangles& mesh, const std::vector<Index>
   return out;
 }
 
-std::vector<double> metric_diagonal(const ElasticMetric& metric) {
-  std::vector<double> out(metric.size(), 0.0);
-  for (Index i = 0; i < metric.size(); ++i)
-    for (Index e = metric.start[i]; e < metric.start[i + 1]; ++e)
-      if (metric.column[e] == i) out[i] = metric.value[e];
-  return out;
-}
-
 std::vector<TangentFrame> tangent_frames(const std::vector<Mat32>& T) {
   std::vector<TangentFrame> out(T.size());
   for (size_t i = 0; i < T.size(); ++i) out[i] = one_tangent_frame(T[i]);

@@ -30,9 +30,6 @@ struct ElasticMetric {
   Index size() const { return static_cast<Index>(start.size()) - 1; }
 };
 
-/// K's diagonal: per movable vertex its own stiffness K_ii.
-std::vector<double> metric_diagonal(const ElasticMetric& metric);
-
 /// \param movable_slot per patch vertex (local id) its movable index, or -1.
 /// \param count the number of movable vertices. \throw Error(Numeric) if K cannot be factorised.
 ElasticMetric elastic_metric(const ArapTriangles& mesh, const std::vector<Index>& movable_slot,

@@ -42,7 +42,7 @@ r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
                    "totals", "timings"], list(r)
 assert r["options"] == {"method": "elastic", "rotation_fits": 3, "max_iterations": 100, "tolerance": 3e-4,
-                        "convergence": 0.01}, r["options"]
+                        "convergence": 0.05}, r["options"]
 assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving", "loops",
                                  "outer_loop_start", "outer_loop_chosen", "skipped",
                                  "chart_weights"], list(r["patches"][0])
@@ -60,9 +60,9 @@ for f in r["frames"]:
     # A stop says converged only where the measure does (lib/elastic/README.md rule 10).
     assert fp["converged"] == (fp["stop"] in ("at rest", "converged")), fp
     if fp["stop"] == "converged":
-        assert fp["first_order_share"] <= 0.01, fp
+        assert fp["first_order_share"] <= 0.05, fp
     elif fp["stop"] != "at rest":
-        assert fp["first_order_share"] > 0.01, fp
+        assert fp["first_order_share"] > 0.05, fp
     if fp["energy_before"] > 0:
         assert abs(fp["first_order_share"] - fp["first_order_gain"] / fp["energy_before"]) <= 1e-12, fp
     assert fp["solves"] >= fp["iterations"] and fp["solve_iterations"] <= 8 * fp["solves"], fp
@@ -72,8 +72,6 @@ assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and l
 assert list(r["totals"]) == ["frames", "moved", "iterations", "held", "flips", "not_converged",
                              "max_slide"], list(r["totals"])
 assert r["totals"]["not_converged"] == sum(not f["patches"][0]["converged"] for f in r["frames"])
-# elbow.0005 keeps 1.3% of its energy as first-order gain: logged, counted, written.
-assert [f["patches"][0]["converged"] for f in r["frames"]] == [True] * 4 + [False], r["frames"]
 assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 5 * 288 and r["totals"]["flips"] == 0
 assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
 PY
@@ -277,16 +275,22 @@ check "a report over an input is refused (2)" fails_with 2 "would overwrite inpu
 check "--strength below 0 is a usage error (2)" fails_with 2 "strength" --strength -1 "${elbow[@]}" -o "$tmp/e11"
 
 # --- convergence (lib/elastic/README.md rule 10) -------------------------------------------------
-"$bin" -j 1 "${elbow[@]}" -o "$tmp/c1" 2>"$tmp/c1.log"
+# elbow.0005 keeps 4.5% of its energy as first-order gain: converged at the default 5%, not at 1%.
+"$bin" -j 1 --convergence 0.01 --report "$tmp/c1.json" "${elbow[@]}" -o "$tmp/c1" 2>"$tmp/c1.log"
 check "a frame that did not converge is written, and its line and the summary say so" \
-  grep -q 'elbow.0005.obj: .*not converged: patch 0 (small gain, first-order gain left 1\.[0-9]*%) -> ' "$tmp/c1.log"
+  grep -q 'elbow.0005.obj: .*not converged: patch 0 (small gain, first-order gain left 4\.[0-9]*%) -> ' "$tmp/c1.log"
+check "... and the report" $py -c "
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert [f['patches'][0]['converged'] for f in r['frames']] == [True] * 4 + [False], r['frames']
+assert r['totals']['not_converged'] == 1" "$tmp/c1.json"
 check "the summary counts the frames that did not converge" grep -q '5 frames slid (1 not converged) in' "$tmp/c1.log"
 check "--require-converged fails the first such frame (5), naming it and its patch" fails_with 5 \
-  "data/elbow/frames/elbow.0004.obj: patch 0: did not converge (small gain, first-order gain left 0.1" \
+  "data/elbow/frames/elbow.0002.obj: patch 0: did not converge (small gain, first-order gain left 0.1" \
   -j 1 --require-converged --convergence 0.001 "${elbow[@]}" -o "$tmp/c2"
-check "... and writes nothing of it" test ! -e "$tmp/c2/elbow.0004.obj"
+check "... and writes nothing of it" test ! -e "$tmp/c2/elbow.0002.obj"
 check "--require-converged passes where every frame converged" \
-  "$bin" -q --require-converged --convergence 0.02 "${elbow[@]}" -o "$tmp/c3"
+  "$bin" -q --require-converged "${elbow[@]}" -o "$tmp/c3"
 check "--convergence is checked against its range (2)" fails_with 2 "convergence" --convergence 2 "${elbow[@]}" -o "$tmp/c4"
 
 finish controls
