@@ -6,7 +6,11 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/bad_inputs/run.sh
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+# shellcheck source=../cli/require.sh
+. "$here/../cli/require.sh"
+require_program SKINSLIDE
+require_tools /usr/bin/python3
+bin=$SKINSLIDE
 tmp=$(mktemp -d)
 mkdir -p "$tmp/out"
 trap 'chmod -R u+rwx "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
