@@ -179,7 +179,6 @@ void Comparison::meshes(const std::string& a, const std::string& b) {
   require_same_faces(fa, fb);
   require_bind_vertices(a, fa.mesh.positions.size());
   set_diagonal(fa.mesh.positions, a);
-  result_.faces_checked = true;
   ComparedFrame frame{a, b, {}, {}, false};
   frame.difference = frame_difference(fa.mesh.positions, fb.mesh.positions, fa.mesh,
                                       result_.diagonal, options_.tolerance);
@@ -229,7 +228,7 @@ void Comparison::caches(const std::string& a, const std::string& b) {
   require_bind_vertices(a, static_cast<std::size_t>(ra.header().points));
   static const PolyMesh kNoFaces;
   const PolyMesh& faces = bind_ ? bind_->mesh : kNoFaces;
-  result_.faces_checked = result_.faces_checked || bind_.has_value();
+  if (!bind_) result_.faces_checked = false;
   for (std::size_t k = 0; k < static_cast<std::size_t>(ra.header().samples); ++k) {
     const Positions3 pa = sample_positions(ra.sample(k));
     const Positions3 pb = sample_positions(rb.sample(k));
@@ -276,6 +275,7 @@ CompareResult compare_outputs(const std::string& a, const std::string& b,
   result.a = a;
   result.b = b;
   result.tolerance = options.tolerance;
+  result.faces_checked = true;  // until a cache is compared without a bind
   Comparison comparison(options, result, frame_done);
   const auto compare_pair = [&](const std::string& fa, const std::string& fb) {
     if (cache_format(fa))

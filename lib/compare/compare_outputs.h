@@ -33,9 +33,10 @@ struct ComparedFrame {
 struct CompareResult {
   std::string a, b;
   double tolerance = 0;
-  double diagonal = 0;                ///< the length distances are in
-  std::string diagonal_from;          ///< whose bounding box: the bind, or A's first frame
-  bool faces_checked = false;         ///< false for caches compared without a bind
+  double diagonal = 0;        ///< the length distances are in
+  std::string diagonal_from;  ///< whose bounding box: the bind, or A's first frame
+  /// Every frame's faces compared: false once a cache is compared without a bind (no faces).
+  bool faces_checked = false;
   std::vector<ComparedFrame> frames;  ///< in file name order; a cache's in sample order
 
   std::size_t differing() const;  ///< frames that differ

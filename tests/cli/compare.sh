@@ -80,6 +80,14 @@ cp -r "$tmp/b" "$tmp/other_mesh" && cp data/face/frames/face.0002.obj "$tmp/othe
 check "a frame of another mesh is refused (exit 3), both files named" \
   compares 3 "$tmp/other_mesh/elbow.0002.obj: has 1069 vertices; $tmp/a/elbow.0002.obj has 1056" "$tmp/a" "$tmp/other_mesh"
 
+echo "glTF frames:"
+rig=(--patch data/elbow/rig_patch.txt --animation bend data/elbow/rig.glb)
+"$bin" -q -j 1 "${rig[@]}" -o "$tmp/ga"
+"$bin" -q -j 2 "${rig[@]}" -o "$tmp/gb"
+"$bin" -q --method paper "${rig[@]}" -o "$tmp/gp"
+check "two runs' GLB frames are the same" compares 0 "5 frames, the same" "$tmp/ga" "$tmp/gb"
+check "the paper method's GLB frames differ, the rest pose does not" compares 1 "4 differ" "$tmp/ga" "$tmp/gp"
+
 echo "point caches:"
 /usr/bin/python3 "$here/objs_to_pc2.py" "$tmp/shot.pc2" "${frames[@]}"
 "$bin" -q -j 1 "${elbow[@]}" "$tmp/shot.pc2" -o "$tmp/ca"
