@@ -29,7 +29,9 @@ const char* const kDescription =
     "A point cache (.pc2, .mdd) of the bind's vertices is a whole shot: one FRAME, slid sample by\n"
     "sample into a cache of the same name (a --frames chunk: <shot>.<first>-<last>.pc2); chunks\n"
     "join with\n"
-    "  skinslide join [-o DIR] CHUNK...";
+    "  skinslide join [-o DIR] CHUNK...\n"
+    "Two slid outputs (folders of frames, or caches) compare as meshes, for CI, with\n"
+    "  skinslide compare [--tolerance T] A B";
 
 // Inputs and glTF.
 void add_inputs(CLI::App& app, CliOptions& o) {

@@ -6,7 +6,11 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/bad_inputs/run.sh
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+# shellcheck source=../cli/require.sh
+. "$here/../cli/require.sh"
+require_program SKINSLIDE
+require_tools /usr/bin/python3
+bin=$SKINSLIDE
 tmp=$(mktemp -d)
 mkdir -p "$tmp/out"
 trap 'chmod -R u+rwx "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
@@ -33,6 +37,10 @@ expect() {
   elif [ "$1" = join ]; then  # `skinslide join [-o DIR] CHUNK...`
     shift
     set -- join -o "$out" "$@"
+  elif [ "$1" = compare ]; then  # `skinslide compare A B`: its report is the output
+    shift
+    mkdir -p "$out"
+    set -- compare --report "$out/report.json" "$@"
   else
     set -- -o "$out" "$@"
   fi
@@ -49,7 +57,7 @@ expect() {
     fail "$name: wrote to stdout"
     ok=0
   elif [ "$code" -ne 0 ] && [ -d "$out" ] && ! grep -q -- "--keep-going" <<<"$*" &&
-    [ -n "$(find "$out" -type f)" ]; then
+    ! { [ "$1" = compare ] && [ "$code" -eq 1 ]; } && [ -n "$(find "$out" -type f)" ]; then
     fail "$name: a failed run left files: $(ls -A "$out")"
     ok=0
   elif [ -d "$out" ] && grep -rqiIE '(^|[ /])[-+]?(nan|inf)' "$out"; then
@@ -309,6 +317,25 @@ cmp -s "$tmp/out/join_valid/shot3.pc2" "$tmp/whole/shot3.pc2" || fail "join_vali
 expect join_a_gap 3 "shot3.0003-0003.pc2: starts at frame 3 but the chunks before it end one sample before frame 2: the samples between are missing" join "$tmp/chunks/shot3.0001-0001.pc2" "$tmp/chunks/shot3.0003-0003.pc2"
 expect join_an_overlap 3 "shot3.0003-0003.pc2: frames 3-3 overlap $tmp/chunks/shot3.0002-0003.pc2's frames 2-3" join "$tmp/chunks/shot3.0002-0003.pc2" "$tmp/chunks/shot3.0003-0003.pc2"
 expect join_not_a_chunk 3 "shot.pc2: not a chunk's name: expected <shot>.<first>-<last>.pc2 or .mdd" join "$tmp/shot.pc2"
+
+# --- `skinslide compare A B`: what it refuses (its report, the output, is then not written) ------
+mkdir -p "$tmp/cmp/a" "$tmp/cmp/b" "$tmp/cmp/fewer" "$tmp/cmp/empty" "$tmp/cmp/face"
+"$bin" -q -o "$tmp/cmp/a" --patch $P $B $F grid.0002.obj
+cp "$tmp/cmp/a/"* "$tmp/cmp/b/"
+cp "$tmp/cmp/a/$F" "$tmp/cmp/fewer/"
+variant cmp/face/$F '20s/.*/f 4 8 7 3/' "$tmp/cmp/a/$F"
+expect compare_same 0 "2 frames, the same" compare "$tmp/cmp/a" "$tmp/cmp/b"
+expect compare_different 1 "1 differ" compare "$tmp/cmp/a/$F" grid.0002.obj
+expect compare_missing_frame 3 "$tmp/cmp/a has 2 frames, $tmp/cmp/fewer 1; missing from $tmp/cmp/fewer: grid.0002.obj" compare "$tmp/cmp/a" "$tmp/cmp/fewer"
+expect compare_sample_counts 3 "shot3.pc2: has 3 samples; $tmp/shot.pc2 has 2" compare "$tmp/shot.pc2" "$tmp/shot3.pc2"
+expect compare_vertex_counts 3 "cut_lines.0001.obj: has 9 vertices; $tmp/cmp/a/$F has 16" compare "$tmp/cmp/a/$F" "$tmp/cut_lines.0001.obj"
+expect compare_other_faces 3 "$tmp/cmp/face/$F:20: face 2 differs from $tmp/cmp/a/$F:20: the two are not one mesh" compare "$tmp/cmp/a/$F" "$tmp/cmp/face/$F"
+expect compare_cache_formats 3 "shot.mdd: is a mdd cache, $tmp/shot.pc2 a pc2 one: compare caches of one format" compare "$tmp/shot.pc2" "$tmp/shot.mdd"
+expect compare_bind_vertices 3 "has 16 vertices; the bind (cube.obj) has 8" compare --bind cube.obj "$tmp/shot.pc2" "$tmp/shot.pc2"
+expect compare_empty_folder 3 "$tmp/cmp/empty: holds no frame (no .obj, .gltf, .glb, .pc2 or .mdd file)" compare "$tmp/cmp/empty" "$tmp/cmp/a"
+expect compare_no_such_output 3 "$tmp/cmp/none: no such file or folder" compare "$tmp/cmp/a" "$tmp/cmp/none"
+expect compare_unlike_outputs 2 "are not alike: compare two folders, two meshes or two caches" compare "$tmp/cmp/a" "$tmp/shot.pc2"
+expect compare_one_output 2 "B is required" compare "$tmp/cmp/a"
 
 # --- files and folders -------------------------------------------------------------------------
 expect file_missing_bind 3 "nothere.obj: cannot read: No such file or directory" --patch $P "$tmp/nothere.obj" $F
