@@ -293,7 +293,21 @@ expect cache_among_frames 2 "a point cache is a whole shot: give it as the only 
 expect cache_frames_none 2 "--frames 5-9 selects none of the cache's 2 samples (frames 1 to 2)" --frames 5-9 --patch $P $B "$tmp/shot.pc2"
 expect cache_format_other_cache 2 "--format mdd: $tmp/shot.pc2 is a pc2 cache" --format mdd --patch $P $B "$tmp/shot.pc2"
 expect cache_format_glb_obj_bind 2 "glb from a point cache needs a .gltf or .glb BIND" --format glb --patch $P $B "$tmp/shot.pc2"
-expect format_without_cache_or_animation 2 "--format: applies to --animation or a point cache FRAME" --format obj --patch $P $B $F
+expect format_without_cache_or_animation 2 "--format: obj or glb applies to --animation or a point cache FRAME" --format obj --patch $P $B $F
+# FRAME files as one cache (--format pc2|mdd): the header the files' numbers make, or none.
+mkdir -p "$tmp/seq"
+for n in 0001 0002 0004; do cp $F "$tmp/seq/s.$n.obj"; done
+cp $F "$tmp/seq/unnumbered.obj"
+cp $F "$tmp/seq/t.1000000000.obj" && cp $F "$tmp/seq/t.1000000001.obj"
+cp "$tmp/cut_lines.0001.obj" "$tmp/seq/grid.0002.obj"
+expect sequence_pc2_uneven 2 "$tmp/seq/s.0004.obj (frame 4) follows $tmp/seq/s.0002.obj (frame 2): a PC2 cache's frames rise by one step" --format pc2 --patch $P $B "$tmp"/seq/s.*.obj
+expect sequence_numbered_and_not 2 "--format pc2: some FRAMEs have a frame number in their file names and some have not" --format pc2 --patch $P $B $F "$tmp/seq/unnumbered.obj"
+expect sequence_mdd_without_fps 2 "--format mdd: an MDD cache holds each sample's time in seconds: give the frames' rate with --fps" --format mdd --patch $P $B $F
+expect sequence_fps_without_mdd 2 "--fps: applies to --animation, or to FRAME files written as one MDD cache" --fps 24 --format pc2 --patch $P $B $F
+expect sequence_mdd_one_time 2 "--format mdd: frames 1000000000 and 1000000001 have one time in float32 at --fps 1" --format mdd --fps 1 --patch $P $B "$tmp"/seq/t.*.obj
+expect sequence_bad_frame_no_cache 3 "grid.0002.obj: has 9 vertices; the bind (grid.obj) has 16" --format pc2 --patch $P $B $F "$tmp/seq/grid.0002.obj"
+# The bind forgotten: the first frame taken for it.
+expect bind_named_as_frame 2 "BIND grid.0001.obj is named as a frame of the sequence it comes with (grid.0002.obj): is the bind mesh missing?" --patch $P grid.0001.obj grid.0002.obj
 # An output that is its input: refused before anything is written, the input untouched.
 mkdir -p "$tmp/cache_in"
 cp "$tmp/shot.pc2" "$tmp/cache_in/"
