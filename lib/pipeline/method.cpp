@@ -118,6 +118,13 @@ std::string frame_summary(const MethodSetup& method, const std::vector<Patch>& p
                     method);
 }
 
+void mark_at_rest(MethodReport& report) {
+  if (auto* elastic = std::get_if<ElasticReport>(&report)) {
+    elastic->stop = "at rest";
+    elastic->converged = true;
+  }
+}
+
 std::string convergence_fault(const MethodReport& report) {
   const auto* elastic = std::get_if<ElasticReport>(&report);
   return elastic && !elastic->converged ? convergence_text(*elastic) : std::string();

@@ -128,7 +128,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
                        threads);
   report.bind_seconds = seconds_since(t_run);
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
-  make_output_dir(o.output);
+  make_output_dir(plan.folder);
   if (!o.dump_dir.empty())
     write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions,
                      {.id_image_size = o.lookup_size});
@@ -153,7 +153,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
       std::none_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; });
   if (cache_out && all_written) cache_out->commit();
   // Each output was flushed before its rename; flushing the folders makes the renames durable.
-  for (const std::string& folder : {o.output, o.dump_dir, o.preview_dir})
+  for (const std::string& folder : {plan.folder, o.dump_dir, o.preview_dir})
     if (!folder.empty()) sync_folder(folder);
   RunResult result;
   result.frames = count;
