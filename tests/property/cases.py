@@ -170,6 +170,53 @@ def make_synthetic(folder):
     pos = np.vstack([pa, pb[1:], [[9, 9, 9], [9, 9, 9.5]]])
     fb = [[24 if v == 0 else 24 + v for v in f] for f in fa]
     add("pinched_unused", pos, fa + fb, degenerate=True)
+    # far from the origin and tiny / huge: tolerances are relative to the mesh
+    pos, faces = _grid(10, 7, 0.1, rng, triangles=True)
+    add("grid_far_tiny", pos * 1e-4 + np.array([3e2, -1e2, 5e1]), faces)
+    ring, rows = 12, 8
+    pos = [[math.cos(2 * math.pi * i / ring), math.sin(2 * math.pi * i / ring), 0.5 * j]
+           for j in range(rows + 1) for i in range(ring)]
+    faces = [[j * ring + i, j * ring + (i + 1) % ring, (j + 1) * ring + (i + 1) % ring,
+              (j + 1) * ring + i] for j in range(rows) for i in range(ring)]
+    add("tube_huge", np.array(pos) * 1e5 + 1e6, faces)
+    # three sheets sharing one edge (a fin: an edge in three faces)
+    pos, faces = _grid(6, 6, 0.05, rng, triangles=True)
+    n0 = len(pos)
+    col = [j * 7 + 3 for j in range(7)]  # the middle column, shared by the fin
+    fin_pos, fin_faces, ids = [], [], {}
+    for j in range(7):
+        for i in range(1, 4):
+            ids[(i, j)] = n0 + len(fin_pos)
+            fin_pos.append([pos[col[j]][0], pos[col[j]][1], 0.3 * i])
+    for j in range(6):
+        for i in range(3):
+            a = col[j] if i == 0 else ids[(i, j)]
+            b = col[j + 1] if i == 0 else ids[(i, j + 1)]
+            fin_faces.append([a, b, ids[(i + 1, j + 1)], ids[(i + 1, j)]])
+    add("fin", np.vstack([pos, fin_pos]), faces + fin_faces, degenerate=True)
+    # an OBJ with CRLF line ends, v lines with w, vt and vn lines, relative (negative) face
+    # indices, groups, comments, v lines after f lines
+    pos, faces = _grid(7, 6, 0.1, rng)
+    lines = ["# quirks\r", "mtllib none.mtl\r", "o quirks\r", "g first\r"]
+    half = len(pos) // 2
+    for v in range(half):
+        lines.append("v  %r %r %r 1.0\r" % tuple(map(float, pos[v])))
+        lines.append("vt 0.5 0.5\r")
+    lines.append("vn 0 0 1\r")
+    done = []
+    for f in faces:
+        if max(f) < half:
+            lines.append("f " + " ".join(f"{v - half}/1/1" for v in f) + "\r")
+            done.append(f)
+    lines.append("g second\r")
+    for v in range(half, len(pos)):
+        lines.append("v %r %r %r\r" % tuple(map(float, pos[v])))
+    for f in faces:
+        if f not in done:
+            lines.append("f " + " ".join(f"{v + 1}//1" for v in f) + "\r")
+    path = folder / "quirks.obj"
+    path.write_bytes(("\n".join(lines) + "\n").encode())
+    out.append(Mesh("quirks", path, "obj"))
     # a bind flat on a line: every vertex on the x axis
     pos, faces = _grid(6, 3, 0.0, rng, triangles=True)
     flat = np.zeros_like(pos)
@@ -437,13 +484,27 @@ def deform(rng, positions, kind):
         n /= np.linalg.norm(n)
         s = (p - c) @ n
         return p - 2 * np.outer(np.maximum(s, 0), n), True
+    if kind == "signed_zero":
+        # zeros made -0.0 and a few coordinates subnormal: bits a rewrite must not lose
+        g = np.random.default_rng(rng.randrange(2**32))
+        p = np.where(p == 0, -0.0, p)
+        pick = g.random(p.shape) < 0.02
+        p[pick] = np.where(g.random(int(pick.sum())) < 0.5, 5e-324, -2.5e-310)
+        return p, False
+    if kind == "spike":
+        # a few vertices thrown far off (a broken rig): spikes, slivers, huge triangles
+        for _ in range(rng.randint(1, 3)):
+            v = rng.randrange(len(p))
+            p[v] = p[v] + np.array([rng.gauss(0, 1) for _ in range(3)]) * d * rng.choice([0.5, 10, 1e3])
+        return p, False
     if kind == "point":
         return np.repeat(p[rng.randrange(len(p))][None], len(p), axis=0), True
     raise ValueError(kind)
 
 
 FRAME_KINDS = [("bend", 30), ("noise", 20), ("twist", 10), ("identity", 8), ("rigid", 8),
-               ("jitter", 6), ("collapse", 6), ("flatten", 4), ("fold", 5), ("point", 2)]
+               ("jitter", 6), ("collapse", 6), ("flatten", 4), ("fold", 5), ("point", 2),
+               ("signed_zero", 3), ("spike", 4)]
 
 
 def random_frame(rng, positions):

@@ -246,6 +246,7 @@ def build(seed, meshes, ctx):
         written = [f for f in case.frames if f.format == "obj" and f.source is None]
         if case.mode == "files" and written and rng.random() < 0.05:
             rng.choice(written).bad = rng.choice(["nan", "short"])
+    case.cache_obj = case.mode in ("pc2", "mdd") and mesh.kind == "obj" and rng.random() < 0.3
     case.threads = rng.choice([1, 1, 2])
     case.report = rng.random() < 0.6
     case.no_timings = case.report and rng.random() < 0.3
@@ -289,7 +290,7 @@ def _make_frame(rng, mesh, number, mode, ctx):
             fr.source = posed
             return fr
     positions, degenerate, note = random_frame(rng, mesh.positions)
-    fmt = "obj" if mode != "files" or mesh.kind == "obj" else rng.choice(["obj", "glb"])
+    fmt = "obj" if mode != "files" or mesh.kind == "obj" else rng.choice(["obj", "glb", "gltf"])
     if mode in ("pc2", "mdd"):
         fmt = mode
     return Frame(number, positions, fmt, note, degenerate)
@@ -392,6 +393,8 @@ def write(case, folder):
         for f in case.frames:
             f.positions = np.asarray(f.positions, dtype=np.float32).astype(np.float64)
         args.append(f"frames/shot.{case.mode}")
+        if case.cache_obj:
+            args[-1:-1] = ["--format", "obj"]
         return args
     stem = random.Random(case.seed + 1).choice(["fr", "shot_a", "arm"])
     for f in case.frames:
@@ -413,9 +416,14 @@ def write(case, folder):
                 del lines[i]
                 text = "\n".join(lines)
             path.write_text(text)
-        else:
+        elif f.format == "glb":
             raw = f.positions[mesh.raw_ids].astype(np.float32)
             path.write_bytes(mesh.glb.with_positions(raw))
+        else:
+            raw = f.positions[mesh.raw_ids].astype(np.float32)
+            text, data = mesh.glb.to_gltf(raw, f"{stem}.{f.number:04d}.bin")
+            path.write_text(text)
+            (folder / "frames" / f"{stem}.{f.number:04d}.bin").write_bytes(data)
         args.append(f"frames/{f.name}")
     return args
 
@@ -567,6 +575,34 @@ def check(case, folder, r, ref=None):
     return failures
 
 
+VALUED = {"-j", "-o", "--report", "--dump", "--preview", "--preview-size", "--frames"}
+FLAGS = {"--report-no-timings", "--keep-going"}
+
+
+def rerun_args(case, args, rng):
+    """The case's command again with the other thread count, into out2/, with a subset of the
+    selected frames in reverse order, and no report, dumps or previews: README "No history"
+    says each output must come back byte for byte."""
+    kept, k = [], 0
+    while k < len(args):
+        a = args[k]
+        if a in VALUED:
+            k += 2
+            continue
+        if a not in FLAGS and not a.startswith("frames/"):
+            kept.append(a)
+        k += 1
+    frames = [f for f in _selected_frames(case)]
+    subset = [f for f in frames if rng.random() < 0.7] or frames[-1:]
+    return kept[:-1] + ["-j", "2" if case.threads == 1 else "1", "-o", "out2", kept[-1]] + \
+        [f"frames/{f.name}" for f in reversed(subset)], [f.name for f in subset]
+
+
+def shell_words(args):
+    import shlex
+    return " ".join(shlex.quote(a) for a in args)
+
+
 def _tail(text, n=600):
     text = text.strip()
     return text if len(text) <= n else "..." + text[-n:]
@@ -665,7 +701,34 @@ def _glb_pair(label, frame_path, out_path, raw_ids):
     return Slid(label, fpos, opos, changed, True), problems
 
 
+def _cache_obj_pairs(case, folder):
+    """A cache slid into a file a frame (--format obj): the bind's own text at each sample."""
+    frames = _selected_frames(case)
+    names = sorted(p.name for p in (folder / "out").iterdir())
+    want = {f"shot.{f.number:04d}.obj": f for f in frames}
+    if names != sorted(want):
+        return [], [f"--format obj from a cache wrote {names[:5]}, expected {sorted(want)[:5]}"]
+    bind = case.mesh.obj
+    pairs, problems = [], []
+    for name, f in want.items():
+        out = Obj.read(folder / "out" / name)
+        if len(out.lines) != len(bind.lines) or out.v_lines != bind.v_lines:
+            problems.append(f"{name}: not the bind's lines")
+            continue
+        vset = set(bind.v_lines)
+        for i, (a, b) in enumerate(zip(bind.lines, out.lines)):
+            if i not in vset and a != b:
+                problems.append(f"{name}:{i + 1}: the bind's line {a!r} written as {b!r}")
+                break
+        frame = np.asarray(f.positions, dtype=np.float32).astype(np.float64)
+        changed = np.any(out.positions != frame, axis=1)
+        pairs.append(Slid(name, frame, out.positions, changed, False))
+    return pairs, problems
+
+
 def _cache_pairs(case, folder):
+    if case.cache_obj:
+        return _cache_obj_pairs(case, folder)
     outs = sorted(p for p in (folder / "out").iterdir())
     if len(outs) != 1:
         return [], [f"a cache run wrote {len(outs)} files: {[p.name for p in outs]}"]
@@ -693,7 +756,8 @@ def _pairs(case, folder, ref, partial=False):
     pairs, problems = [], []
     frames = _selected_frames(case)
     names = sorted(p.name for p in (folder / "out").iterdir()) if (folder / "out").exists() else []
-    expect = sorted(f.name for f in frames)
+    expect = sorted([f.name for f in frames] +
+                    [f.name[:-5] + ".bin" for f in frames if f.format == "gltf"])
     if partial:
         frames = [f for f in frames if not f.bad]
     elif names != expect:

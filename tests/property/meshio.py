@@ -55,7 +55,8 @@ class Obj:
             tok = lines[i].split()
             tail = " ".join(tok[4:])
             x, y, z = (repr(float(c)) for c in positions[v])
-            lines[i] = f"v {x} {y} {z}" + (" " + tail if tail else "")
+            end = "\r" if lines[i].endswith("\r") else ""
+            lines[i] = f"v {x} {y} {z}" + (" " + tail if tail else "") + end
         return "\n".join(lines)
 
 
@@ -134,8 +135,40 @@ class Glb:
 
     @staticmethod
     def read(path):
+        path = str(path)
+        if path.endswith(".gltf"):
+            return Glb.read_gltf(path)
         with open(path, "rb") as f:
-            return Glb(f.read(), str(path))
+            return Glb(f.read(), path)
+
+    @staticmethod
+    def read_gltf(path):
+        """A .gltf and its one buffer (a file beside it or a data URI), as a GLB would hold them."""
+        import base64
+        import os
+        doc = json.loads(open(path, "rb").read().decode("utf-8"), parse_constant=_no_constant)
+        buffers = doc.get("buffers", [])
+        if len(buffers) != 1:
+            raise FormatError(f"{path}: {len(buffers)} buffers (one read here)")
+        uri = buffers[0]["uri"]
+        if uri.startswith("data:"):
+            data = base64.b64decode(uri.split(",", 1)[1])
+        else:
+            bin_path = os.path.join(os.path.dirname(path), uri)
+            if not os.path.exists(bin_path):
+                raise FormatError(f"{path}: its buffer {uri} is missing")
+            data = open(bin_path, "rb").read()
+        if len(data) < buffers[0]["byteLength"]:
+            raise FormatError(f"{path}: buffer {uri} holds {len(data)} of "
+                              f"{buffers[0]['byteLength']} bytes")
+        return Glb(_glb_bytes(doc, data), path)
+
+    def to_gltf(self, raw_positions, bin_name):
+        """This document as a .gltf text and its .bin bytes, positions replaced."""
+        g = Glb(self.with_positions(raw_positions))
+        doc = json.loads(json.dumps(g.json))
+        doc["buffers"][0]["uri"] = bin_name
+        return json.dumps(doc, indent=1), g.bin
 
     def accessor_layout(self, index):
         acc = self.json["accessors"][index]
@@ -185,6 +218,15 @@ class Glb:
 
 def _no_constant(name):
     raise FormatError(f"JSON holds {name}")
+
+
+def _glb_bytes(doc, data):
+    body = json.dumps(doc).encode()
+    body += b" " * (-len(body) % 4)
+    data = data + b"\0" * (-len(data) % 4)
+    total = 12 + 8 + len(body) + 8 + len(data)
+    return (struct.pack("<4sII", b"glTF", 2, total) + struct.pack("<II", len(body), 0x4E4F534A) +
+            body + struct.pack("<II", len(data), 0x004E4942) + data)
 
 
 def weld(raw):

@@ -84,17 +84,38 @@ def build(seed, meshes, ctx):
         if f.bad:
             continue
         p = _frame_positions(case, f)
-        if case.mode in ("pc2", "mdd") or (f.format == "glb"):
+        if case.mode in ("pc2", "mdd") or f.format in ("glb", "gltf"):
             p = p.astype(np.float32).astype(np.float64)
         if case.frame_form == "float32":
             p = p.astype(np.float32).astype(np.float64)
         case.py_frames.append((f, p))
+    # one malformed argument, in a case that is otherwise accepted, and the kind it must raise
+    case.mangle = None
+    if expected(case)[0] is None and case.py_frames and rng.random() < 0.15:
+        case.mangle = rng.choice(list(MANGLES))
     return case
+
+
+MANGLES = {  # name: (error kind, what)
+    "degenerate_face_unselected": (None, "a face a, a, b outside the patches"),
+    "degenerate_face_selected": ("input", "a selected face a, a, b"),
+    "two_corner_face": ("input", "a face of 2 corners"),
+    "nan_bind": ("input", "a NaN bind coordinate"),
+    "nan_frame": ("input", "a NaN frame coordinate"),
+    "short_frame": ("input", "a frame one vertex short"),
+    "weight_above_one": ("usage", "a slide weight of 1.5"),
+    "negative_strength": ("usage", "strength -1"),
+    "nan_strength": ("usage", "strength NaN"),
+}
 
 
 def expected(case):
     """The error kind the case must raise (None: none; "maybe": input or numeric allowed), in
     the order skinslide checks: options, face ids, pins, the selection's topology."""
+    if getattr(case, "mangle", None):
+        kind, what = MANGLES[case.mangle]
+        if kind:
+            return kind, what
     if case.py_usage:
         return "usage", case.py_usage
     if case.py_input:
@@ -141,7 +162,7 @@ def run_case(seed, meshes, ctx, folder):
             "strength": case.strength, "outer": case.outer, "corners": case.corners,
             "method": case.method, "threads": case.threads, "options": case.py_options,
             "frame_count": len(case.py_frames), "frame_form": case.frame_form,
-            "edge_spread": case.edge_spread, "pool": case.pool}
+            "edge_spread": case.edge_spread, "pool": case.pool, "mangle": case.mangle}
     (folder / "spec.json").write_text(json.dumps(spec, indent=1))
     argv = ["/usr/bin/python3", os.path.join(HERE, "py_worker.py"), "spec.json"]
     env = dict(os.environ)
@@ -169,8 +190,38 @@ def run_case(seed, meshes, ctx, folder):
         return case, argv, r.code, [f"result.json: {e}"]
     outs = np.load(folder / "result.npz")
     failures += check(case, result, outs)
+    if not failures and not result.get("error") and _same_as_command(case):
+        failures += _against_command(case, ctx, folder, outs)
     code = "error " + result["error"]["kind"] if result.get("error") else 0
     return case, argv, code, failures
+
+
+def _same_as_command(case):
+    """Cases whose every input the command line takes as the module did."""
+    return (case.mode == "files" and case.mangle is None and case.frame_form != "float32" and
+            all(f.format == "obj" and not f.bad for f in case.frames) and case.frames and
+            expected(case)[0] is None)
+
+
+def _against_command(case, ctx, folder, outs):
+    """The module's positions against the command's on the same inputs, to the bit
+    (lib/python/README.md)."""
+    sub = folder / "command"
+    args = cli_case.write(case, sub)
+    r = cli_case.run(ctx.binary, args, sub, ctx.timeout)
+    if r.code != 0:
+        return [f"the command line on the same inputs exited {r.code}: {r.stderr.strip()[-300:]}"]
+    problems = []
+    for k, (f, _) in enumerate(case.py_frames):
+        path = sub / "out" / f.name
+        if not path.exists():
+            continue  # not selected by --frames
+        cli = Obj.read(path).positions
+        if cli.tobytes() != outs[f"out{k}"].tobytes():
+            n = int(np.any(cli != outs[f"out{k}"], axis=1).sum())
+            problems.append(f"frame {k}: the module and the command differ at {n} vertices "
+                            f"(command: {cli_case.shell_words([ctx.binary] + args)} in {sub})")
+    return problems
 
 
 def _no_constant(name):
@@ -248,4 +299,4 @@ def describe(case):
     return (cli_case.describe(case) + f"\n  python: faces {case.faces_form}/{case.flat_form}, "
             f"patches {case.patch_form}{' (one list)' if case.single_patch else ''}, frames "
             f"{case.frame_form}, options {case.py_options}, edge_spread {case.edge_spread}, "
-            f"pool {case.pool}; expected {expected(case)[1]}")
+            f"pool {case.pool}, mangled {case.mangle}; expected {expected(case)[1]}")

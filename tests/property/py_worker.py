@@ -29,8 +29,12 @@ def main():
             return a.astype(np.int32)
         return a
 
+    mangle = spec.get("mangle")
     try:
         bind = arrays["bind"]
+        if mangle == "nan_bind":
+            bind = bind.copy()
+            bind[len(bind) // 2, 1] = np.nan
         if spec["faces"] == "flat":
             faces, kw = arrays["face_vertices"], {"face_sizes": arrays["face_sizes"]}
             if spec["faces_form"] == "int32":
@@ -45,15 +49,33 @@ def main():
                 faces.append(flat[at:at + s])
                 at += s
             kw = {}
+        if mangle in ("degenerate_face_unselected", "degenerate_face_selected", "two_corner_face"):
+            # one more face after the others (their ids unchanged), as a list of polygons
+            if spec["faces"] == "lists":
+                polygons = faces
+            else:
+                flat, sizes = arrays["face_vertices"].tolist(), arrays["face_sizes"].tolist()
+                polygons, at = [], 0
+                for n in sizes:
+                    polygons.append(flat[at:at + n])
+                    at += n
+            polygons = polygons + ([[0, 0, 1]] if mangle != "two_corner_face" else [[0, 1]])
+            faces, kw = polygons, {}
         patches = [as_given(f"patch{i}", spec["patch_form"]) for i in range(spec["patch_count"])]
+        if mangle == "degenerate_face_selected":
+            patches[0] = list(patches[0]) + [len(faces) - 1]
         if spec["single_patch"]:
             patches = patches[0]
         if spec["pins"]:
             kw["pins"] = as_given("pins", spec["patch_form"])
         if spec["weights"]:
             kw["weights"] = arrays["weights"]
+        if mangle == "weight_above_one":
+            kw["weights"] = np.full(len(bind), 1.5)
         if spec["strength"] is not None:
             kw["strength"] = spec["strength"]
+        if mangle in ("negative_strength", "nan_strength"):
+            kw["strength"] = -1.0 if mangle == "negative_strength" else float("nan")
         if spec["outer"]:
             kw["outer_loop_vertices"] = spec["outer"]
         if spec["corners"]:
@@ -68,6 +90,11 @@ def main():
             frames = [f.astype(np.float32) for f in frames]
         elif spec["frame_form"] == "fortran":
             frames = [np.asfortranarray(f) for f in frames]
+        if mangle == "nan_frame" and frames:
+            frames[0] = frames[0].copy()
+            frames[0][0, 2] = np.nan
+        if mangle == "short_frame" and frames:
+            frames[0] = frames[0][:-1]
         reports = []
         for k, f in enumerate(frames):
             slid, report = slider.slide(f, edge_spread=spec["edge_spread"])

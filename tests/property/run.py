@@ -91,7 +91,7 @@ def run_cli_case(seed, meshes, ctx, folder):
             pre.append(f"the unslid reference run exited {r0.code}: {r0.stderr.strip()[-300:]}")
         ref = folder / "ref"
     for f in case.frames:
-        if f.format == "glb" and f.source is None:
+        if f.format in ("glb", "gltf") and f.source is None:
             from meshio import Glb, weld
             g = Glb.read(folder / "frames" / f.name)
             welded, ids = weld(g.raw)
@@ -99,6 +99,18 @@ def run_cli_case(seed, meshes, ctx, folder):
                 f.weld_changed = True
     r = cli_case.run(ctx.binary, args, folder, ctx.timeout)
     failures = pre + cli_case.check(case, folder, r, ref if case.mode == "animation" else None)
+    rng = random.Random(seed ^ 0xA6A1)
+    if not failures and r.code == 0 and case.mode == "files" and rng.random() < 0.25:
+        again, names = cli_case.rerun_args(case, args, rng)
+        r2 = cli_case.run(ctx.binary, again, folder, ctx.timeout)
+        failures += cli_case.process_failures(r2, "the re-run")
+        if r2.code != 0:
+            failures.append(f"the re-run ({cli_case.shell_words(again)}) exited {r2.code}")
+        else:
+            for n in names:
+                if (folder / "out2" / n).read_bytes() != (folder / "out" / n).read_bytes():
+                    failures.append(f"{n}: other bytes with -j and frames changed "
+                                    f"({cli_case.shell_words(again)})")
     return case, args, r, failures
 
 
