@@ -13,7 +13,7 @@ import subprocess
 import numpy as np
 
 from cases import _pick, random_frame, random_selections, selection_text
-from geometry import diagonal, distances_to_triangles, fan_triangles
+from geometry import diagonal, distances_to_triangles, exact_within, fan_triangles
 from meshio import FormatError, Glb, Obj, read_exr, read_mdd, read_pc2, read_png, weld, \
     write_mdd, write_pc2
 from topology import Refusal, patch_components
@@ -876,6 +876,9 @@ def check_slide(case, pair, may_move, patch_tris, identity=False, method=None):
         limit[chord] = tol / w[chord] + 8 * 2.0 ** -52 * scale / w[chord]
         d = distances_to_triangles(p, corners, float(limit.max()) * 4)
         bad = np.flatnonzero(~(d <= limit))
+        # the double formulas cancel on slivers: the few that fail are measured exactly
+        bad = np.array([k for k in bad if not (np.isfinite(d[k]) and d[k] < 1e3 * limit[k] and
+                                               exact_within(p[k], corners, limit[k]))], dtype=int)
         if len(bad):
             k = bad[np.argmax(d[bad] / np.maximum(limit[bad], 1e-300))]
             problems.append(
@@ -885,8 +888,8 @@ def check_slide(case, pair, may_move, patch_tris, identity=False, method=None):
     if identity:
         moved = np.linalg.norm(pair.out - pair.frame, axis=1).max() if len(pair.out) else 0
         if moved > tol:
-            problems.append(f"{label}: the bind as the frame moved by {moved / diag:.3g} of the "
-                            f"diagonal (the bind comes back unchanged)")
+            problems.append(f"{label}: the bind (or a rigid copy) as the frame moved by "
+                            f"{moved / diag:.3g} of the diagonal (it comes back unchanged)")
     return problems
 
 
@@ -905,9 +908,11 @@ def _check_outputs(case, folder, ref):
     tris = _patch_triangles(case)
     for pair in pairs:
         spec = getattr(pair, "frame_spec", None)
-        identity = spec is not None and spec.note == "identity" and \
-            np.array_equal(pair.frame, case.mesh.positions) and \
-            (case.method == "elastic" or not case.mesh.degenerate)
+        # the bind comes back unchanged; with elastic a rigid or uniformly scaled copy too
+        identity = spec is not None and (
+            (spec.note == "identity" and np.array_equal(pair.frame, case.mesh.positions) and
+             (case.method == "elastic" or not case.mesh.degenerate)) or
+            (spec.note == "rigid" and case.method == "elastic" and not pair.f32))
         problems += check_slide(case, pair, may_move, tris, identity)
     if case.report:
         problems += _check_report(case, folder, pairs)
@@ -995,9 +1000,11 @@ def _check_report(case, folder, pairs):
                 if fp.get("iterations", 0) > fits * steps:
                     problems.append(f"report: frame {k} patch {ci} took {fp.get('iterations')} "
                                     f"steps; --rotation-fits {fits} x --max-iterations {steps}")
-                if fp.get("flips") and not case.mesh.degenerate and pair is not None and \
-                        getattr(pair, "frame_spec", None) is not None and \
-                        not pair.frame_spec.degenerate:
+                # lib/elastic/README.md "Guarantees": no slid triangle turns against the frame's.
+                # Not kept where weights between 0 and 1 meet (U + w (u - U) is not
+                # line-searched; noted in README here): checked where every weight is 0 or 1.
+                fractional = any(0 < case.w_eff[v] < 1 for v in moving)
+                if fp.get("flips") and not fractional:
                     problems.append(f"report: frame {k} patch {ci}: {fp.get('flips')} flips "
                                     f"(elastic slides fold-free)")
                 eb, ea = fp.get("energy_before"), fp.get("energy_after")

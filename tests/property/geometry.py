@@ -1,5 +1,7 @@
 """Geometry for the invariants: fan triangles, point-to-triangle distances (a uniform grid so a
 whole patch of a large mesh is measured in well under a second), bounding-box diagonals."""
+from fractions import Fraction
+
 import numpy as np
 
 
@@ -113,3 +115,45 @@ def distances_to_triangles(points, corners, reach):
                            np.broadcast_to(corners[b, 2], points.shape))
         best = np.minimum(best, d)
     return best
+
+
+def _exact_distance2(p, a, b, c):
+    """Squared distance from p to triangle abc in exact rational arithmetic (from the doubles'
+    exact values): the arbiter where the double formulas cancel (slivers)."""
+    p, a, b, c = ([Fraction(float(x)) for x in v] for v in (p, a, b, c))
+
+    def sub(u, v):
+        return [u[0] - v[0], u[1] - v[1], u[2] - v[2]]
+
+    def dot(u, v):
+        return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+    def seg2(q, u, v):
+        d = sub(v, u)
+        dd = dot(d, d)
+        t = Fraction(0) if dd == 0 else min(max(dot(sub(q, u), d) / dd, Fraction(0)), Fraction(1))
+        x = [u[k] + t * d[k] - q[k] for k in range(3)]
+        return dot(x, x)
+
+    e0, e1, v2 = sub(b, a), sub(c, a), sub(p, a)
+    d00, d01, d11 = dot(e0, e0), dot(e0, e1), dot(e1, e1)
+    d20, d21 = dot(v2, e0), dot(v2, e1)
+    den = d00 * d11 - d01 * d01
+    best = min(seg2(p, a, b), seg2(p, b, c), seg2(p, c, a))
+    if den > 0:
+        v = (d11 * d20 - d01 * d21) / den
+        w = (d00 * d21 - d01 * d20) / den
+        if v >= 0 and w >= 0 and v + w <= 1:
+            q = [a[k] + v * e0[k] + w * e1[k] - p[k] for k in range(3)]
+            best = min(best, dot(q, q))
+    return best
+
+
+def exact_within(point, corners, limit):
+    """Whether `point` lies within `limit` of one of the triangles (T, 3, 3), decided exactly;
+    the triangles whose boxes are farther are not measured."""
+    lo = corners.min(axis=1) - limit
+    hi = corners.max(axis=1) + limit
+    near = np.flatnonzero(np.all((point >= lo) & (point <= hi), axis=1))
+    lim2 = Fraction(float(limit)) ** 2
+    return any(_exact_distance2(point, *corners[t]) <= lim2 for t in near)

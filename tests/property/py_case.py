@@ -71,7 +71,7 @@ def build(seed, meshes, ctx):
         case.py_input = "a face id out of range"
     if case.pins is not None and rng.random() < 0.04:
         case.pins = case.pins + [len(case.mesh.positions)]
-    case.frame_form = rng.choice(["float64", "float64", "float32", "fortran"])
+    case.frame_form = rng.choice(["float64", "float64", "float32", "fortran", "strided"])
     case.edge_spread = rng.random() < 0.6
     case.pool = rng.random() < 0.2
     if case.mode == "animation":
@@ -290,6 +290,11 @@ def check(case, result, outs):
                                 f"{pr.get('spread_slid')!r}")
             if case.method == "elastic" and pr.get("stop") not in cli_case.ELASTIC_STOPS:
                 problems.append(f"{label}: patch {ci} stop {pr.get('stop')!r}")
+            if case.method == "elastic" and pr.get("flips") and ci < len(case.comps):
+                moving = _expected_patch_moves(case, ci)[1]
+                if not any(0 < case.w_eff[v] < 1 for v in moving):
+                    problems.append(f"{label}: patch {ci}: {pr['flips']} flips (elastic slides "
+                                    f"fold-free)")
     if case.pool and result.get("pool_same") is False:
         problems.append("frames slid by a thread pool differ from the serial bits")
     return problems

@@ -90,6 +90,8 @@ def main():
             frames = [f.astype(np.float32) for f in frames]
         elif spec["frame_form"] == "fortran":
             frames = [np.asfortranarray(f) for f in frames]
+        elif spec["frame_form"] == "strided":
+            frames = [np.repeat(f, 2, axis=1)[:, ::2] for f in frames]  # a view, not contiguous
         if mangle == "nan_frame" and frames:
             frames[0] = frames[0].copy()
             frames[0][0, 2] = np.nan

@@ -111,7 +111,38 @@ def run_cli_case(seed, meshes, ctx, folder):
                 if (folder / "out2" / n).read_bytes() != (folder / "out" / n).read_bytes():
                     failures.append(f"{n}: other bytes with -j and frames changed "
                                     f"({cli_case.shell_words(again)})")
+    if not failures and r.code == 0 and case.mode in ("pc2", "mdd") and not case.frames_spec \
+            and not case.cache_obj and len(case.frames) >= 2 and rng.random() < 0.4:
+        failures += farm_chunks(case, args, folder, ctx, rng)
     return case, args, r, failures
+
+
+def farm_chunks(case, args, folder, ctx, rng):
+    """README "Farm": the shot cut into two --frames chunks and joined is byte for byte the
+    whole run's cache."""
+    numbers = [f.number for f in case.frames]
+    cut = rng.randrange(1, len(numbers))
+    problems = []
+    base = [a for a in args if a not in ("out",)]
+    base = [a for k, a in enumerate(base) if not (a == "-o")]
+    for first, last in ((numbers[0], numbers[cut - 1]), (numbers[cut], numbers[-1])):
+        chunk = base[:-1] + ["-o", "chunks", "--frames", f"{first}-{last}", base[-1]]
+        r = cli_case.run(ctx.binary, chunk, folder, ctx.timeout)
+        problems += cli_case.process_failures(r, "a farm chunk")
+        if r.code != 0:
+            return problems + [f"the chunk {first}-{last} exited {r.code}: {r.stderr.strip()[-300:]}"]
+    chunks = sorted(str(p.relative_to(folder)) for p in (folder / "chunks").iterdir())
+    r = cli_case.run(ctx.binary, ["join", "-q", "-o", "joined"] + chunks, folder, ctx.timeout)
+    problems += cli_case.process_failures(r, "skinslide join")
+    if r.code != 0:
+        return problems + [f"skinslide join {' '.join(chunks)} exited {r.code}: {r.stderr.strip()[-300:]}"]
+    whole = sorted((folder / "out").iterdir())
+    joined = sorted((folder / "joined").iterdir())
+    if [p.name for p in joined] != [p.name for p in whole]:
+        return problems + [f"join wrote {[p.name for p in joined]}, the whole run {[p.name for p in whole]}"]
+    if joined[0].read_bytes() != whole[0].read_bytes():
+        problems.append(f"the chunks {chunks} joined differ from the whole run's {whole[0].name}")
+    return problems
 
 
 def main():
