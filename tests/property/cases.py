@@ -279,6 +279,15 @@ def _region(rng, mesh, kind, cap):
         return {seed}, "a single face"
     if kind == "strays":
         return {rng.randrange(nf) for _ in range(rng.randint(1, 5))}, "stray faces"
+    if kind == "confetti":
+        # many small patches at once: single faces and pairs scattered over the mesh
+        out = set()
+        for _ in range(rng.randint(20, 200)):
+            f = rng.randrange(nf)
+            out.add(f)
+            if rng.random() < 0.3 and topo.neighbours[f]:
+                out.add(rng.choice(topo.neighbours[f]))
+        return out, "confetti of single faces and pairs"
     if kind == "grown":
         return topo.grow(rng, seed, size), f"a region grown to {size} faces"
     if kind == "punched":
@@ -335,7 +344,7 @@ def _region(rng, mesh, kind, cap):
 
 
 REGION_KINDS = [("grown", 36), ("punched", 14), ("single", 8), ("strays", 8), ("subset", 5),
-                ("component", 5), ("whole", 4), ("bowtie", 2), ("touching", 4)]
+                ("component", 5), ("whole", 4), ("bowtie", 2), ("touching", 4), ("confetti", 3)]
 
 
 def _pick(rng, weighted):
@@ -487,8 +496,9 @@ def deform(rng, positions, kind):
     if kind == "signed_zero":
         # zeros made -0.0 and a few coordinates subnormal: bits a rewrite must not lose
         g = np.random.default_rng(rng.randrange(2**32))
-        p = np.where(p == 0, -0.0, p)
-        pick = g.random(p.shape) < 0.02
+        zero = p == 0
+        p = np.where(zero, -0.0, p)
+        pick = zero & (g.random(p.shape) < 0.3)
         p[pick] = np.where(g.random(int(pick.sum())) < 0.5, 5e-324, -2.5e-310)
         return p, False
     if kind == "spike":
