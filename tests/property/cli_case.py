@@ -247,11 +247,15 @@ def build(seed, meshes, ctx):
         if case.mode == "files" and written and rng.random() < 0.05:
             rng.choice(written).bad = rng.choice(["nan", "short"])
     case.cache_obj = case.mode in ("pc2", "mdd") and mesh.kind == "obj" and rng.random() < 0.3
+    # --no-slide: every frame read, checked and written unchanged (no bind set-up)
+    case.no_slide = rng.random() < 0.04
     case.threads = rng.choice([1, 1, 2])
     case.report = rng.random() < 0.6
     case.no_timings = case.report and rng.random() < 0.3
     case.preview = rng.random() < 0.2
     case.preview_size = rng.choice([16, 32, 64])
+    if case.no_slide and rng.random() < 0.8:
+        case.report = case.no_timings = case.dump = case.preview = False
     case.keep_going = rng.random() < 0.3
     case.verbosity = rng.choice(["-q", "", "-v"])
     case.config = rng.random() < 0.1
@@ -360,6 +364,8 @@ def write(case, folder):
         (folder / "config.toml").write_text("\n".join(cfg) + "\n")
         args = kept + ["--config", "config.toml"]
     args += ["-j", str(case.threads)]
+    if case.no_slide:
+        args.append("--no-slide")
     if case.verbosity:
         args.append(case.verbosity)
     if case.report:
@@ -514,8 +520,17 @@ def paper_short_outer(case):
 
 def expected_codes(case):
     """The exit codes the case allows, and why."""
+    if case.no_slide and (case.mode == "animation" or case.report or case.dump or case.preview):
+        return {2}, "--no-slide with --animation, --report, --dump or --preview"
     if case.usage_error:
         return {2}, case.usage_error
+    if case.no_slide:
+        if case.empty_file:
+            return {3}, "--no-slide: an empty patch file"
+        if any(f.bad for f in _selected_frames(case)) or \
+                any(getattr(f, "weld_changed", False) for f in _selected_frames(case)):
+            return {3}, "--no-slide: a broken frame"
+        return {0}, "--no-slide: the frames copied (no bind set-up, no topology checks)"
     if case.refusal:
         return {3}, f"refusal: {case.refusal}"
     if case.corners_usage:
@@ -901,6 +916,8 @@ def _patch_triangles(case):
 
 
 def _check_outputs(case, folder, ref):
+    if case.no_slide:
+        return _check_unchanged(case, folder)
     problems = []
     pairs, p = _pairs(case, folder, ref)
     problems += p
@@ -920,6 +937,29 @@ def _check_outputs(case, folder, ref):
         problems += _check_dumps(case, folder, pairs)
     if case.preview:
         problems += _check_previews(case, folder, pairs)
+    return problems
+
+
+def _check_unchanged(case, folder):
+    """--no-slide: each output is its frame's bytes (a cache: the same cache)."""
+    problems = []
+    if case.mode == "files":
+        for f in _selected_frames(case):
+            out = folder / "out" / f.name
+            if not out.exists():
+                problems.append(f"--no-slide: no output for {f.name}")
+            elif f.format == "obj" and out.read_bytes() != (folder / "frames" / f.name).read_bytes():
+                problems.append(f"--no-slide: {f.name} is not its frame's bytes")
+            elif f.format in ("glb", "gltf"):
+                # the JSON is tinygltf's writing (lib/io/README.md); the buffer is the frame's
+                a, b = Glb.read(folder / "frames" / f.name), Glb.read(out)
+                if a.bin.rstrip(b"\0") != b.bin.rstrip(b"\0"):
+                    problems.append(f"--no-slide: {f.name}'s buffer changed")
+    elif not case.cache_obj:
+        outs = sorted((folder / "out").iterdir())
+        src = folder / "frames" / f"shot.{case.mode}"
+        if len(outs) != 1 or outs[0].read_bytes() != src.read_bytes():
+            problems.append(f"--no-slide: the cache {[p.name for p in outs]} is not the input's bytes")
     return problems
 
 
@@ -968,14 +1008,29 @@ def _check_report(case, folder, pairs):
         return problems
     for ci, (c, p) in enumerate(zip(case.comps, patches)):
         free, moving = _expected_patch_moves(case, ci)
+        pins = set(case.pins or [])
         want = {"faces": len(c.faces), "vertices": len(c.vertices), "free": len(free),
+                "pinned": len([v for v in c.interior if v in pins]), "loops": len(c.loops),
                 "skipped": not free}
         if "moving" in p:
             want["moving"] = 0 if not free else len(moving)
         got = {k: p.get(k) for k in want}
         if got != want:
             problems.append(f"report: patch {ci} says {got}, expected {want}")
+    controls = rep.get("controls", {})
+    if case.pins is not None:
+        pins = set(case.pins)
+        inner = {v for c in case.comps for v in c.interior}
+        want = {"pins_requested": len(pins), "pins_ignored": len(pins - inner)}
+        got = {k: controls.get(k) for k in want}
+        if got != want:
+            problems.append(f"report: controls say {got}, expected {want}")
     frames = rep.get("frames", [])
+    if case.mode == "files":
+        want = [(f"frames/{f.name}", f"out/{f.name}") for f in _selected_frames(case)]
+        got = [(fr.get("path"), fr.get("output")) for fr in frames]
+        if got != want:
+            problems.append(f"report: frames {got[:3]}, expected {want[:3]} (command-line order)")
     if len(frames) != len(pairs) and case.mode in ("files", "pc2", "mdd"):
         problems.append(f"report: {len(frames)} frames, {len(pairs)} outputs")
         return problems
