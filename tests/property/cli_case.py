@@ -570,7 +570,8 @@ def check(case, folder, r, ref=None):
     if tmp:
         failures.append(f"temporaries left behind: {tmp[:5]}")
     if r.code != 0:
-        if r.code in (2,) or (r.code == 3 and (case.refusal or case.usage_error)):
+        if r.code in (2,) or (r.code == 3 and (case.refusal or case.usage_error or
+                                                paper_short_outer(case) is not False)):
             written = [p for d in ("out", "dump", "preview") for p in (folder / d).rglob("*")
                        if p.is_file()] + ([folder / "report.json"]
                                            if (folder / "report.json").exists() else [])
