@@ -249,6 +249,10 @@ def build(seed, meshes, ctx):
     case.cache_obj = case.mode in ("pc2", "mdd") and mesh.kind == "obj" and rng.random() < 0.3
     # --no-slide: every frame read, checked and written unchanged (no bind set-up)
     case.no_slide = rng.random() < 0.04
+    # outputs that would overwrite inputs or each other: refused before any work (exit 2)
+    case.clash = None
+    if case.mode == "files" and rng.random() < 0.04:
+        case.clash = rng.choice(["twice", "into_frames"])
     case.threads = rng.choice([1, 1, 2])
     case.report = rng.random() < 0.6
     case.no_timings = case.report and rng.random() < 0.3
@@ -378,7 +382,7 @@ def write(case, folder):
         args += ["--preview", "preview", "--preview-size", str(case.preview_size)]
     if case.keep_going:
         args.append("--keep-going")
-    args += ["-o", "out"]
+    args += ["-o", "frames" if case.clash == "into_frames" else "out"]
     if case.frames_spec:
         args += ["--frames", case.frames_spec]
     if case.mode == "animation":
@@ -431,6 +435,8 @@ def write(case, folder):
             path.write_text(text)
             (folder / "frames" / f"{stem}.{f.number:04d}.bin").write_bytes(data)
         args.append(f"frames/{f.name}")
+    if case.clash == "twice":
+        args.append(f"frames/{case.frames[0].name}")
     return args
 
 
@@ -524,6 +530,8 @@ def expected_codes(case):
         return {2}, "--no-slide with --animation, --report, --dump or --preview"
     if case.usage_error:
         return {2}, case.usage_error
+    if case.clash:
+        return {2}, "an output would overwrite an input or another output"
     if case.no_slide:
         if case.empty_file:
             return {3}, "--no-slide: an empty patch file"
