@@ -1,15 +1,15 @@
 #include "command_line.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
+#include <map>
+#include <type_traits>
+#include <variant>
 
+#include "config_keys.h"
+#include "core/file_extension.h"
 #include "core/version.h"
 
 namespace skinslide::cli {
 namespace {
-
-namespace fs = std::filesystem;
 
 const char* const kDescription =
     ": skin sliding for deformed character meshes.\n"
@@ -101,83 +101,46 @@ void add_outputs(CLI::App& app, CliOptions& o) {
       ->group(out);
 }
 
+// A table's option (core/option.h) declared for CLI11 in `group`: a number bound to its member of
+// `options` (CLI11 shows the member's value as the default) and checked against its range; a word
+// bound to o.words[name], checked against its words and set into `options` by run_options().
+template <class Options>
+CLI::Option* add_table_option(CLI::App& app, const Option<Options>& option, Options& options,
+                              CliOptions& o, const char* group) {
+  const std::string name = "--" + option.name;
+  CLI::Option* added = std::visit(
+      [&](const auto& value) {
+        if constexpr (requires { value.member; }) {
+          return app.add_option(name, options.*value.member, option.help)
+              ->capture_default_str()
+              ->check(CLI::Range(value.low, value.high));
+        } else {
+          std::string& word = o.words[option.name] = value.get(options);
+          return app.add_option(name, word, option.help)
+              ->capture_default_str()
+              ->check(CLI::IsMember(value.words));
+        }
+      },
+      option.value);
+  return added->group(group);
+}
+
+// A method's options, from its table: each refused with the other method (check_options), but an
+// option the run also reads whatever the method (--lookup-size, for --dump).
+template <class Options>
+void add_method_options(CLI::App& app, Options& options, CliOptions& o, const char* group) {
+  const std::string method = method_name(options);
+  for (const Option<Options>& option : option_table<Options>()) {
+    CLI::Option* added = add_table_option(app, option, options, o, group);
+    if (!option.run_wide) o.method_only.push_back({added, method});
+  }
+}
+
 void add_method(CLI::App& app, CliOptions& o) {
   const char* method = "Method";
-  app.add_option("--method", o.method,
-                 "elastic: the free vertices relax in a fixed chart of each patch towards the "
-                 "bind's edge lengths, with fold-free, energy-decreasing steps; paper: Yang & "
-                 "Zhang's bar nets (the options below --tolerance)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"elastic", "paper"}))
-      ->group(method);
-  app.add_option("--rotation-fits", o.elastic.rotation_fits,
-                 "Elastic: ARAP local/global rounds (fit each triangle's rotation, then relax with "
-                 "them held); more reach lower energies, fewer pop less from frame to frame")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000))
-      ->group(method);
-  app.add_option("--max-iterations", o.elastic.max_iterations,
-                 "Elastic: Gauss-Newton steps per round at most")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 100000))
-      ->group(method);
-  app.add_option("--tolerance", o.elastic.tolerance,
-                 "Elastic: a round stops at the first step that lowers its energy by less than "
-                 "this fraction of its starting energy")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
-      ->group(method);
-  app.add_option("--density", o.density,
-                 "Paper: force density q of a bar of length L: paper = 1 - L/Lmax (floored), "
-                 "inverse|length = Lmin/L, uniform = 1")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"paper", "inverse", "length", "uniform"}))
-      ->group(method);
-  app.add_option("--holes", o.holes,
-                 "Paper: inner boundary loops in the bind net: free (the paper) or fill (a "
-                 "virtual centre node per hole)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"free", "fill"}))
-      ->group(method);
-  app.add_option("--q-floor", o.paper.q_floor,
-                 "Paper: smallest force density (densities paper, inverse)")
-      ->capture_default_str()
-      ->check(CLI::Range(1e-12, 1.0))
-      ->group(method);
-  app.add_option("--frame-solver", o.frame_solver,
-                 "Paper: how bind and frame nets are solved: cholesky (sparse factor, analysis "
-                 "reused by every frame), multigrid (conjugate gradient preconditioned by an "
-                 "aggregation multigrid; no ordering, so a shorter set-up, and faster frames on "
-                 "large patches), auto (multigrid for patches of " +
-                     std::to_string(kMultigridFreeNodes) +
-                     " free vertices or more, else cholesky) or cg (frame nets by "
-                     "Jacobi-preconditioned CG; slow, for comparison). The nets agree within "
-                     "--cg-tolerance")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"auto", "cholesky", "multigrid", "cg"}))
-      ->group(method);
-  app.add_option("--cg-tolerance", o.paper.cg_tolerance,
-                 "Paper: CG (multigrid, cg) stops at |r| <= tol |b|; every method keeps a "
-                 "frame's warm start that meets it")
-      ->capture_default_str()
-      ->check(CLI::Range(1e-16, 1e-2))
-      ->group(method);
-  app.add_option("--cg-max-iterations", o.paper.cg_max_iterations,
-                 "Paper: past this the frame net is solved directly (counted)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000000))
-      ->group(method);
-  app.add_option("--locate", o.locate,
-                 "Paper: finding bind positions in frame nets: walk (from each vertex's own "
-                 "triangles) or image (a triangle-ID image, --lookup-size)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"walk", "image"}))
-      ->group(method);
-  app.add_option("--lookup-size", o.paper.lookup_size,
-                 "Side of the triangle-ID images (--locate image, --dump), pixels")
-      ->capture_default_str()
-      ->check(CLI::Range(8, 16384))
-      ->group(method);
+  add_table_option(app, method_option(), o.run, o, method);
+  add_method_options(app, o.elastic, o, method);
+  add_method_options(app, o.paper, o, method);
 }
 
 void add_run(CLI::App& app, CliOptions& o) {
@@ -233,23 +196,21 @@ void add_controls(CLI::App& app, CliOptions& o) {
       ->excludes(weights)
       ->excludes("--weights-from-obj-color")
       ->group(controls);
-  app.add_option("--strength", o.run.strength,
-                 "Multiplies every slide weight; the product is clamped to [0,1]")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e6))
-      ->group(controls);
+  add_table_option(app, strength_option(), o.run, o, controls);
   app.add_option("--pin", o.run.pin,
                  "Vertex ids that do not slide (12, 12-40, pBody.vtx[12:40]); the skin around "
                  "them does")
       ->type_name("FILE")
       ->group(controls);
-  app.add_option("--corners", o.run.corners,
-                 "Four vertex ids on a patch's boundary loop, in walking order, for the square's "
-                 "corners (0,0) (1,0) (1,1) (0,1); that loop becomes the outer loop (repeatable: "
-                 "one per patch)")
-      ->type_name("A,B,C,D")
-      ->allow_extra_args(false)
-      ->group(controls);
+  auto* corners =
+      app.add_option("--corners", o.run.corners,
+                     "Four vertex ids on a patch's boundary loop, in walking order, for the "
+                     "square's corners (0,0) (1,0) (1,1) (0,1); that loop becomes the outer loop "
+                     "(repeatable: one per patch)")
+          ->type_name("A,B,C,D")
+          ->allow_extra_args(false)
+          ->group(controls);
+  o.method_only.push_back({corners, method_name(PaperOptions{})});  // the elastic chart is a disk
   app.add_option("--outer-loop-vertex", o.run.outer_loop_vertices,
                  "A vertex id on the boundary loop to put on the square (repeatable: one per "
                  "patch)")
@@ -280,19 +241,26 @@ void add_options(CLI::App& app, CliOptions& o) {
   add_controls(app, o);
 }
 
+void parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // A misspelt key leaves its option unset: a required option then seems missing.
+    if (e.get_exit_code() != 0) check_config_keys(app);
+    throw;
+  }
+  check_config_keys(app);
+  check_options(app, o);
+}
+
 void check_options(const CLI::App& app, CliOptions& o) {
   o.has_rig = app.count("--animation") > 0;
   // Options of one method only are refused with the other, naming both.
-  const bool paper = o.method == "paper";
-  for (const char* name : {"--density", "--holes", "--q-floor", "--frame-solver", "--cg-tolerance",
-                           "--cg-max-iterations", "--locate", "--corners"})
-    if (paper == false && app.count(name) > 0)
-      throw CLI::ValidationError(name, std::string("applies to --method paper only, not to "
-                                                   "--method elastic"));
-  for (const char* name : {"--rotation-fits", "--max-iterations", "--tolerance"})
-    if (paper && app.count(name) > 0)
-      throw CLI::ValidationError(name, std::string("applies to --method elastic only, not to "
-                                                   "--method paper"));
+  const std::string& method = o.words.at(method_option().name);
+  for (const auto& [option, only] : o.method_only)
+    if (only != method && option->count() > 0)
+      throw CLI::ValidationError(
+          option->get_name(), "applies to --method " + only + " only, not to --method " + method);
   const RunOptions& r = o.run;
   if (r.no_slide &&
       (o.has_rig || !r.report.empty() || !r.dump_dir.empty() || !r.preview_dir.empty()))
@@ -306,9 +274,7 @@ void check_options(const CLI::App& app, CliOptions& o) {
   if (app.count("--format") > 0 && !o.has_rig && !cache_frame)
     throw CLI::ValidationError("--format",
                                "applies to --animation or a point cache FRAME (.pc2, .mdd)");
-  std::string ext = fs::path(r.bind).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(r.bind);
   const bool gltf_bind = ext == ".gltf" || ext == ".glb";
   if (o.has_rig && !gltf_bind)
     throw CLI::ValidationError("--animation", "needs a .gltf or .glb BIND, not " + r.bind);
@@ -321,22 +287,29 @@ void check_options(const CLI::App& app, CliOptions& o) {
                                "needs a .gltf or .glb BIND, not " + r.bind);
 }
 
+// `options` with its word options set from the words given.
+template <class Options>
+Options with_words(Options options, const std::map<std::string, std::string>& words) {
+  for (const Option<Options>& option : option_table<Options>())
+    if (const auto* word = std::get_if<WordOption<Options>>(&option.value))
+      word->set(options, words.at(option.name));
+  return options;
+}
+
 RunOptions run_options(const CliOptions& o) {
-  RunOptions r = o.run;
+  RunOptions r = with_words(o.run, o.words);  // the method named, with its defaults
   if (o.has_rig) r.rig = o.rig;
   r.report_timings = !o.report_no_timings;
   r.lookup_size = o.paper.lookup_size;
-  r.slide = parse_method(o.method);
-  if (std::holds_alternative<ElasticOptions>(r.slide)) {
-    r.slide = o.elastic;
-  } else {
-    PaperOptions paper = o.paper;
-    paper.density = parse_density(o.density);
-    paper.holes = parse_holes(o.holes);
-    paper.frame_solver = parse_frame_solver(o.frame_solver);
-    paper.locate = parse_locate(o.locate);
-    r.slide = paper;
-  }
+  std::visit(
+      [&](auto& slide) {
+        using Options = std::decay_t<decltype(slide)>;
+        if constexpr (std::is_same_v<Options, ElasticOptions>)
+          slide = with_words(o.elastic, o.words);
+        else
+          slide = with_words(o.paper, o.words);
+      },
+      r.slide);
   return r;
 }
 

@@ -1,9 +1,14 @@
 // The command line's options (README "Options"): declared for CLI11, checked, and turned into
-// the pipeline's RunOptions. Every default is the library's own (RunOptions, ElasticOptions,
-// PaperOptions): the options are bound straight into those structs, and --help shows them.
+// the pipeline's RunOptions. The options of the library's tables (core/option.h: each method's,
+// the run's --method and --strength) are declared from them, with their names, ranges, words and
+// help; every default is the library's own (RunOptions, ElasticOptions, PaperOptions): the options
+// are bound straight into those structs, and --help shows them.
 #pragma once
 
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -12,16 +17,15 @@
 namespace skinslide::cli {
 
 // The command line's options: bound straight into the library's structs, so their defaults are
-// the library's; the enums as the words the options take.
+// the library's; the word options as the words given.
 struct CliOptions {
   RunOptions run;
   ElasticOptions elastic;
   PaperOptions paper;
-  std::string method = method_name(SlideOptions{});
-  std::string density = to_string(PaperOptions{}.density);
-  std::string holes = to_string(PaperOptions{}.holes);
-  std::string frame_solver = to_string(PaperOptions{}.frame_solver);
-  std::string locate = to_string(PaperOptions{}.locate);
+  /// The word options as given (--method, --density, ...), by name; run_options() sets them.
+  std::map<std::string, std::string> words;
+  /// Options one method alone takes, each with that method's name: refused with the other.
+  std::vector<std::pair<CLI::Option*, std::string>> method_only;
   RigOptions rig;          ///< --animation, --fps
   bool has_rig = false;    ///< --animation given: the frames are BIND posed by its skin
   bool keyframes = false;  ///< --keyframes: the default, spelled out
@@ -36,11 +40,17 @@ std::string description();
 /// Declares every option on `app`, bound into `o`.
 void add_options(CLI::App& app, CliOptions& o);
 
+/// Parses the command line (and its --config file) into `o`, then checks what CLI11 does not:
+/// every key of the config file names an option (cli/config_keys.h), and check_options.
+/// \throw CLI::ParseError: CLI11's own, CLI::ConfigError for a config file's unknown key (checked
+///        first when the parse fails: a misspelt key may be why), CLI::ValidationError.
+void parse(CLI::App& app, CliOptions& o, int argc, char** argv);
+
 /// After app.parse(): what CLI11 cannot say by itself, conflicts between options and with the
 /// BIND's format; sets o.has_rig. \throw CLI::ValidationError naming the option.
 void check_options(const CLI::App& app, CliOptions& o);
 
-/// The command line's options as the pipeline's. \throw Error(Usage) on an unknown method name.
+/// The command line's options as the pipeline's.
 RunOptions run_options(const CliOptions& o);
 
 }  // namespace skinslide::cli

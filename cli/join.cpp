@@ -2,12 +2,12 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <new>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "exit_status.h"
 #include "skinslide.h"
 
 namespace skinslide {
@@ -35,11 +35,9 @@ int run_join(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "skinslide join: error: %s\nRun with --help for the options.\n", e.what());
-    return exit_code(ErrorKind::Usage);
+    return cli::parse_error_exit(app, e, "skinslide join");
   }
-  try {
+  return cli::exit_status("skinslide join", [&] {
     if (output.empty()) {
       output = std::filesystem::path(chunks.front()).parent_path().string();
       if (output.empty()) output = ".";
@@ -50,16 +48,7 @@ int run_join(int argc, char** argv) {
                    joined.chunks, joined.header.samples, joined.header.points,
                    joined.output.c_str());
     return 0;
-  } catch (const Error& e) {
-    std::fprintf(stderr, "skinslide join: error: %s\n", e.what());
-    return exit_code(e.kind());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "skinslide join: error: out of memory\n");
-    return exit_code(ErrorKind::Internal);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "skinslide join: internal error: %s\n", e.what());
-    return exit_code(ErrorKind::Internal);
-  }
+  });
 }
 
 }  // namespace skinslide

@@ -17,6 +17,7 @@
 #include "core/allocator.h"
 #include "core/error.h"
 #include "core/version.h"
+#include "exit_status.h"
 #include "join.h"
 #include "skinslide.h"
 #include "progress.h"
@@ -76,23 +77,9 @@ int main(int argc, char** argv) {
   app.get_formatter()->column_width(36);
   cli::add_options(app, o);
   try {
-    app.parse(argc, argv);
-    cli::check_options(app, o);
+    cli::parse(app, o, argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "skinslide: error: %s\nRun with --help for the options.\n", e.what());
-    return exit_code(ErrorKind::Usage);
+    return cli::parse_error_exit(app, e, "skinslide");
   }
-  try {
-    return run_and_print(o);
-  } catch (const Error& e) {
-    std::fprintf(stderr, "skinslide: error: %s\n", e.what());
-    return exit_code(e.kind());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "skinslide: error: out of memory\n");
-    return exit_code(ErrorKind::Internal);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "skinslide: internal error: %s\n", e.what());
-    return exit_code(ErrorKind::Internal);
-  }
+  return cli::exit_status("skinslide", [&] { return run_and_print(o); });
 }

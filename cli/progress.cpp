@@ -8,11 +8,9 @@ Progress::Progress(size_t frame_count, Verbosity verbosity, bool is_terminal)
       terminal_(is_terminal && verbosity != Verbosity::Quiet),
       pending_(frame_count),
       finished_(frame_count, 0),
-      start_(std::chrono::steady_clock::now()) {}
+      start_(Clock::now()) {}
 
-double Progress::elapsed_seconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-}
+double Progress::elapsed_seconds() const { return seconds_since(start_); }
 
 void Progress::done(size_t index, std::vector<std::string> lines) {
   std::lock_guard<std::mutex> lock(mutex_);

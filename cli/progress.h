@@ -1,11 +1,12 @@
 // What the CLI tells the user on stderr: per-frame lines in frame order, a TTY progress line.
 #pragma once
 
-#include <chrono>
 #include <cstdio>
 #include <mutex>
 #include <string>
 #include <vector>
+
+#include "core/stopwatch.h"
 
 namespace skinslide::cli {
 
@@ -33,7 +34,7 @@ class Progress {
   size_t next_to_print_ = 0;
   size_t finished_count_ = 0;
   bool line_drawn_ = false;
-  std::chrono::steady_clock::time_point start_;
+  Clock::time_point start_;
 };
 
 }  // namespace skinslide::cli

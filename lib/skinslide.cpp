@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {
@@ -74,14 +74,6 @@ std::vector<std::vector<Index>> selections(const std::vector<std::vector<Index>>
   return out;
 }
 
-template <class T>
-void check_range(const char* name, T value, T low, T high) {
-  if (!(value >= low && value <= high))  // NaN fails too
-    throw Error(ErrorKind::Usage, std::string(name) + " = " + format_double(double(value)) +
-                                      " is outside [" + format_double(double(low)) + ", " +
-                                      format_double(double(high)) + "]");
-}
-
 void check_span(std::span<const double> xyz, Index vertex_count, const char* what) {
   if (xyz.size() != 3 * static_cast<size_t>(vertex_count))
     throw Error(ErrorKind::Input, std::string(what) + " has " + std::to_string(xyz.size()) +
@@ -91,19 +83,13 @@ void check_span(std::span<const double> xyz, Index vertex_count, const char* wha
 
 }  // namespace
 
-// The ranges are the command line's (cli/command_line.cpp), which CLI11 checks itself there.
 void check_options(const SlideOptions& options) {
-  if (const auto* e = std::get_if<ElasticOptions>(&options)) {
-    check_range("rotation_fits", e->rotation_fits, 1, 1000);
-    check_range("max_iterations", e->max_iterations, 0, 100000);
-    check_range("tolerance", e->tolerance, 0.0, 1.0);
-    return;
-  }
-  const PaperOptions& p = std::get<PaperOptions>(options);
-  check_range("q_floor", p.q_floor, 1e-12, 1.0);
-  check_range("cg_tolerance", p.cg_tolerance, 1e-16, 1e-2);
-  check_range("cg_max_iterations", p.cg_max_iterations, 1, 1000000);
-  check_range("lookup_size", p.lookup_size, 8, 16384);
+  std::visit(
+      [](const auto& o) {
+        using Options = std::decay_t<decltype(o)>;
+        check_ranges(option_table<Options>(), o);
+      },
+      options);
 }
 
 BindSetup set_up(const Bind& bind, const std::vector<std::vector<Index>>& patches,

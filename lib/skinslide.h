@@ -27,6 +27,7 @@
 #include "pipeline/method.h"
 #include "pipeline/options.h"
 #include "pipeline/run.h"
+#include "pipeline/run_options.h"
 #include "pipeline/slide_frame.h"
 
 namespace skinslide {
@@ -52,7 +53,8 @@ BindSetup set_up(const Bind& bind, const std::vector<std::vector<Index>>& patche
                  const SlideOptions& options = {}, const SlideControls& controls = {},
                  unsigned threads = 1);
 
-/// Checks a method's options against the ranges the command line accepts.
+/// Checks a method's options against the ranges of its option table (core/option.h), which the
+/// command line checks too.
 /// \throw Error(Usage) naming the option, its value and its range.
 void check_options(const SlideOptions& options);
 

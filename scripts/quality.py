@@ -32,6 +32,7 @@ Run with /usr/bin/python3 (standard library + numpy + scipy). The measures come 
         name order; each slid frame has the frame's file name in --slid. --sequence: the
         frames are consecutive times of an animation (popping figures); else those print "-".
         --seconds: wall clock of the command that made --slid (printed per frame).
+        --period N: the motion's period in frames for the jerk index (default: the frame count).
     quality.py header
         Prints the table header.
 """
@@ -51,8 +52,9 @@ from oracle import read_obj, read_patch  # noqa: E402
 import metrics  # noqa: E402
 
 HEADER = ("| case | method | frames | flips | spread mean | spread worst | improved | "
-          "on-surface max | border max dev | outside max dev | pop mean | pop p99 | s/frame |")
-RULE = "|" + "---|" * 13
+          "on-surface max | border max dev | outside max dev | pop mean | pop p99 | "
+          "jitter mean | jitter p99 | jitter max | jerk | s/frame |")
+RULE = "|" + "---|" * 17
 
 
 # ---------------------------------------------------------------- glTF bind
@@ -87,7 +89,7 @@ def _accessor(doc, bufs, index):
     if "sparse" in a or a.get("normalized"):
         raise SystemExit("quality.py: sparse/normalized accessors are not handled here")
     v = doc["bufferViews"][a["bufferView"]]
-    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[a["type"]]
+    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}[a["type"]]
     dt = {5121: np.uint8, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}[a["componentType"]]
     size = np.dtype(dt).itemsize * width
     stride = v.get("byteStride", size)
@@ -306,6 +308,45 @@ def _second_diff_norms(X):
     return np.linalg.norm(X[2:] - 2.0 * X[1:-1] + X[:-2], axis=2)
 
 
+def free_vertices(faces, ids):
+    """Patch vertices on no patch boundary edge (an edge used by one patch face): the ones a
+    slide may move."""
+    cnt = {}
+    for i in ids:
+        f = faces[i]
+        for k in range(len(f)):
+            e = (min(f[k], f[(k + 1) % len(f)]), max(f[k], f[(k + 1) % len(f)]))
+            cnt[e] = cnt.get(e, 0) + 1
+    border = {v for e, c in cnt.items() if c == 1 for v in e}
+    return np.array(sorted({v for i in ids for v in faces[i]} - border), np.int64)
+
+
+def mean_edge_length(V, faces, ids):
+    """Mean length of the patch's distinct edges in V."""
+    e = set()
+    for i in ids:
+        f = faces[i]
+        for k in range(len(f)):
+            a, b = f[k], f[(k + 1) % len(f)]
+            e.add((min(a, b), max(a, b)))
+    e = np.array(sorted(e))
+    return float(np.linalg.norm(V[e[:, 0]] - V[e[:, 1]], axis=1).mean())
+
+
+def jitter(S, edge, period):
+    """S: (T, n, 3) slide (slid - frame) of the free vertices over consecutive frames.
+    -> dict: second difference |S[t+1] - 2 S[t] + S[t-1]| in units of `edge` (mean, p99, max
+    over vertices and interior times) and the jerk index mean |d2 S| / mean |d S| / (2 pi /
+    period) (None when the slide never moves)."""
+    d2 = _second_diff_norms(S) / edge
+    d1 = np.linalg.norm(S[1:] - S[:-1], axis=2) / edge
+    out = {"jitter_mean": float(d2.mean()), "jitter_p99": float(np.percentile(d2, 99)),
+           "jitter_max": float(d2.max()), "period": period, "edge": edge}
+    m1 = float(d1.mean())
+    out["jerk"] = float(d2.mean()) / m1 / (2 * math.pi / period) if m1 > 0 else None
+    return out
+
+
 def cmd_measure(args):
     names = sorted(os.path.basename(p) for p in glob.glob(os.path.join(args.frames, "*.obj")))
     if not names:
@@ -313,6 +354,7 @@ def cmd_measure(args):
     Vb, bfaces, _ = read_obj(args.bind)
     patch = read_patch(args.patch, len(bfaces))
     pverts = np.unique([v for i in patch for v in bfaces[i]])
+    fverts = free_vertices(bfaces, patch)
     flips = 0
     ratios = []
     at_bind = 0
@@ -367,8 +409,15 @@ def cmd_measure(args):
         base = float(aF.mean())
         pop = {"pop_mean": float(aS.mean()) / base, "pop_p99": float(np.percentile(aD, 99)) / base}
         row += [_g(pop["pop_mean"], 4), _g(pop["pop_p99"])]
+        # the jitter figures: the free vertices' slide in units of the mean bind edge
+        free_in = np.searchsorted(pverts, fverts)
+        jit = jitter((S - F)[:, free_in], mean_edge_length(Vb, bfaces, patch),
+                     args.period or T)
+        pop.update(jit)
+        row += [_g(jit["jitter_mean"]), _g(jit["jitter_p99"]), _g(jit["jitter_max"]),
+                "-" if jit["jerk"] is None else _g(jit["jerk"])]
     else:
-        row += ["-", "-"]
+        row += ["-"] * 6
     row.append("-" if args.seconds is None else "%.3g" % (args.seconds / T))
     print("| " + " | ".join(row) + " |")
     if args.json:
@@ -402,6 +451,8 @@ def main(argv=None):
     for k in ("--case", "--method", "--bind", "--patch", "--frames", "--slid"):
         p.add_argument(k, required=True)
     p.add_argument("--sequence", action="store_true")
+    p.add_argument("--period", type=float,
+                   help="N of the jerk index (frames of the motion's period; default: the frames)")
     p.add_argument("--check-topology", action="store_true",
                    help="also check that every frame has the bind's faces")
     p.add_argument("--seconds", type=float)

@@ -2,14 +2,20 @@
 # Quality benchmark: how well each slide method restores the bind's edge lengths on real meshes,
 # and what it costs in flipped triangles, surface error, border motion and popping.
 #
-# Usage: scripts/quality.sh [--cases a,b,...] [--methods unslid,paper,elastic[,prototype][,corrective-smooth]]
+# Usage: scripts/quality.sh [--cases a,b,...]
+#                           [--methods unslid,paper,elastic[,elastic-converged][,prototype][,corrective-smooth]]
 #                           [--keep DIR]
 #
-#   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
+#   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face,
+#              swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
 #   --methods  default: unslid,paper,elastic,corrective-smooth
 #              unslid    the frames as they are (the baseline; same measuring code path)
 #              paper     skinslide --method paper (a binary without --method: its default)
 #              elastic   skinslide --method elastic ("n/a" when the binary has no such method)
+#              elastic-converged
+#                        the same with $QUALITY_CONVERGED (default "--tolerance 1e-6
+#                        --max-iterations 1000 --rotation-fits 10"): the elastic energy solved
+#                        hard, to tell early stops from jumps between minima (not a default)
 #              prototype /work/shared/reference/elastic_slide.py (slow; a yardstick, not default)
 #              corrective-smooth
 #                        the peer a pipeline would use instead: Blender's Corrective Smooth
@@ -26,9 +32,14 @@
 #              default: a temporary folder, removed at the end
 # Environment: SKINSLIDE=path/to/binary skips the build (else scripts/build.sh builds build/);
 #   QUALITY_DATA (default /work/shared/data), QUALITY_REFERENCE (default /work/shared/reference),
-#   BLENDER (default: blender on the PATH).
+#   BLENDER (default: blender on the PATH), CGAL_DATA (the swings' hand and camel; default
+#   /usr/share/doc/libcgal-dev/data.tar.gz from Debian's libcgal-demo, installed by
+#   scripts/deps.sh when a swing case needs it).
 # Needs /usr/bin/python3 with numpy and scipy (apt-get install -y python3-numpy python3-scipy).
 # Exits non-zero as soon as a command fails.
+# Time: the full default run with elastic-converged added took 26.5 min wall (6.8 min of CPU) on
+# a 2-core machine loaded 11-14 by other builds (2026-11-27); the six swings are most of it.
+# --cases swing-tube,swing-hand (the small swings) takes about a minute.
 #
 # Cases (patch files are written as plain face ids by scripts/quality.py, the only syntax the
 # reference's read_patch accepts):
@@ -61,6 +72,18 @@
 #   data-elbow, data-face
 #                the repo's samples: data/<case>/bind.obj, patch_plain.txt, frames/*.obj.
 #                (elbow.0001 is the bind pose itself: counted aside, "(1 at bind)".)
+#   swing-tube, swing-elbow, swing-finger, swing-hand, swing-camel, swing-cesium
+#                slow swings for popping, written by scripts/make_swings.py (its header has the
+#                sources, licences and the exact rig): one joint of a mesh bent back and forth
+#                by linear blend skinning with smooth weights over one 60-frame period (bend
+#                THETA0 + THETA (1 - cos(2 pi t / 60)) / 2, twist PHI sin(2 pi t / 60)), a band
+#                patch round the joint. tube: coarse, made there (384 vertices, 24 x 16 quads);
+#                elbow: MakeHuman's body (CC0), left elbow; finger: the same body's left middle
+#                finger; hand: CGAL's hand.off (a fist, 1197 vertices), wrist; camel: CGAL's
+#                camel.off (9770 vertices), front left knee (both from Debian's libcgal-demo,
+#                CC0 per its copyright file); cesium: CesiumMan.glb posed by its own skin and
+#                weights, the left elbow turned (the swing's LBS is the model's own there).
+#                Frames swing.0000..0059.
 #
 # Columns, per case and method, over its frames (metrics.py per frame, patch = the case's patch):
 #   flips          sum over frames of metrics `flips` (slid patch triangles facing against the frame)
@@ -75,6 +98,21 @@
 #                  |S[t+1]-2S[t]+S[t-1]|, over the same mean for the unslid frames F
 #   pop p99        99th percentile over patch vertices and interior times of |D''|, D = S - F
 #                  (the slide itself), over mean |F''|
+#                  (the two pop columns stay for one release beside the jitter columns, which
+#                  replace them: on a walk the walk's own acceleration is large and hides the
+#                  slide's jumps)
+#   jitter mean / p99 / max
+#                  (animations only) the slide D = S - F of the patch's free vertices (on no
+#                  patch boundary edge; border vertices have D = 0 and would only dilute), its
+#                  second difference |D[t+1] - 2 D[t] + D[t-1]| in units of the patch's mean bind
+#                  edge length (distinct patch edges): mean, 99th percentile and max over free
+#                  vertices and interior times. A texture sees it: 0.1 = a tenth of an edge of
+#                  jump from one frame to the next
+#   jerk           (animations only) mean |D''| / mean |D'| / (2 pi / N), both means over free
+#                  vertices and times (D' over the T - 1 steps); N = the motion's period in
+#                  frames: 60 for the swings, the clip's key count for the walks (CesiumMan 48,
+#                  Fox 18: their walks are one cycle each). 1 = a slide as smooth in time as a
+#                  sine of that period; "-" when the slide never moves (unslid)
 #   s/frame        wall clock of the skinslide (prototype, Blender) command / frames; informational
 set -Eeuo pipefail
 trap 'echo "quality.sh: failed (exit $?): $BASH_COMMAND" >&2' ERR
@@ -87,6 +125,8 @@ REFDIR=${QUALITY_REFERENCE:-/work/shared/reference}
 export QUALITY_REFERENCE=$REFDIR
 
 cases=ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
+cases+=,swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
+QUALITY_CONVERGED=${QUALITY_CONVERGED:---tolerance 1e-6 --max-iterations 1000 --rotation-fits 10}
 methods=unslid,paper,elastic,corrective-smooth
 methods_given=0
 keep=
@@ -105,11 +145,11 @@ done
 IFS=, read -r -a case_list <<<"$cases"
 IFS=, read -r -a method_list <<<"$methods"
 for c in "${case_list[@]}"; do
-    case $c in ict-face|ict-cheek|cesium-knee|fox-leg|data-elbow|data-face) ;;
+    case $c in ict-face|ict-cheek|cesium-knee|fox-leg|data-elbow|data-face|swing-*) ;;
         *) echo "quality.sh: unknown case $c" >&2; exit 2 ;; esac
 done
 for m in "${method_list[@]}"; do
-    case $m in unslid|paper|elastic|prototype|corrective-smooth) ;;
+    case $m in unslid|paper|elastic|elastic-converged|prototype|corrective-smooth) ;;
         *) echo "quality.sh: unknown method $m" >&2; exit 2 ;; esac
 done
 
@@ -165,6 +205,12 @@ method_args() {
     case $1 in
         paper) [[ $has_method == 1 ]] && margs=(--method paper); return 0 ;;
         elastic) [[ $has_elastic == 1 ]] || return 1; margs=(--method elastic); return 0 ;;
+        elastic-converged)
+            [[ $has_elastic == 1 ]] || return 1
+            local extra
+            read -r -a extra <<<"$QUALITY_CONVERGED"
+            margs=(--method elastic "${extra[@]}")
+            return 0 ;;
     esac
     return 1
 }
@@ -184,45 +230,45 @@ run_cs() {
     notes+=("$1: corrective-smooth: $(grep -m1 '^corrective_smooth: ' "$log" | sed 's/^corrective_smooth: //')")
 }
 
-na_row() { echo "| $1 | $2 | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a |"; }
+na_row() { echo "| $1 | $2 |$(printf ' n/a |%.0s' {1..15})"; }
 
 notes=()
 
-# measure CASE METHOD BIND PATCH FRAMES SLID SEQUENCE(0|1) [SECONDS]
+# measure CASE METHOD BIND PATCH FRAMES SLID SEQUENCE(0|N: the motion's period) [SECONDS]
 measure() {
     local extra=()
-    [[ $7 == 1 ]] && extra+=(--sequence)
+    [[ $7 != 0 ]] && extra+=(--sequence --period "$7")
     [[ -n ${8:-} ]] && extra+=(--seconds "$8")
     "$PY" "$Q" measure --case "$1" --method "$2" --bind "$3" --patch "$4" --frames "$5" \
         --slid "$6" --json "$work/metrics.jsonl" "${extra[@]}"
 }
 
-# OBJ cases: run_obj_case CASE BIND PATCH FRAMES_DIR
+# OBJ cases: run_obj_case CASE BIND PATCH FRAMES_DIR [PERIOD: frames are an animation]
 run_obj_case() {
-    local c=$1 bind=$2 patch=$3 frames=$4 m t0 t1 dir
+    local c=$1 bind=$2 patch=$3 frames=$4 seq=${5:-0} m t0 t1 dir
     local flist=("$frames"/*.obj)
     for m in "${method_list[@]}"; do
         dir=$work/$c/$m
         case $m in
-            unslid) measure "$c" "$m" "$bind" "$patch" "$frames" "$frames" 0 ;;
+            unslid) measure "$c" "$m" "$bind" "$patch" "$frames" "$frames" "$seq" ;;
             prototype)
                 mkdir -p "$dir"
                 t0=$(now)
                 "$PY" "$REFDIR/elastic_slide.py" "$bind" "$patch" "${flist[@]}" -o "$dir"
                 t1=$(now)
-                measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" 0 "$(elapsed "$t0" "$t1")" ;;
+                measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" "$seq" "$(elapsed "$t0" "$t1")" ;;
             corrective-smooth)
                 [[ $has_blender == 1 ]] || { na_row "$c" "$m"; continue; }
                 t0=$(now)
                 run_cs "$c" "$bind" "$patch" "$frames" "$dir"
                 t1=$(now)
-                measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" 0 "$(elapsed "$t0" "$t1")" ;;
+                measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" "$seq" "$(elapsed "$t0" "$t1")" ;;
             *)
                 if ! method_args "$m"; then na_row "$c" "$m"; continue; fi
                 t0=$(now)
                 "$SKINSLIDE" -q "${margs[@]}" --patch "$patch" -o "$dir" "$bind" "${flist[@]}"
                 t1=$(now)
-                measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" 0 "$(elapsed "$t0" "$t1")" ;;
+                measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" "$seq" "$(elapsed "$t0" "$t1")" ;;
         esac
     done
 }
@@ -247,32 +293,33 @@ run_gltf_case() {
     fi
     notes+=("$c: --strength 0 vs single-triangle patch: $info")
     local flist=("$w/frames"/*.obj)
+    local period=${#flist[@]}   # the clip is one walk cycle: N = its key count
     # the welded bind must have skinslide's topology (faces of its OBJ frames)
     "$PY" "$Q" measure --case "$c" --method check --bind "$w/bind.obj" --patch "$w/patch.txt" \
         --frames "$w/frames" --slid "$w/frames" --check-topology >/dev/null
     for m in "${method_list[@]}"; do
         dir=$w/$m
         case $m in
-            unslid) measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$w/frames" 1 ;;
+            unslid) measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$w/frames" "$period" ;;
             prototype)
                 mkdir -p "$dir"
                 t0=$(now)
                 "$PY" "$REFDIR/elastic_slide.py" "$w/bind.obj" "$w/patch.txt" "${flist[@]}" -o "$dir"
                 t1=$(now)
-                measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" 1 "$(elapsed "$t0" "$t1")" ;;
+                measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" "$period" "$(elapsed "$t0" "$t1")" ;;
             corrective-smooth)
                 [[ $has_blender == 1 ]] || { na_row "$c" "$m"; continue; }
                 t0=$(now)
                 run_cs "$c" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir"
                 t1=$(now)
-                measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" 1 "$(elapsed "$t0" "$t1")" ;;
+                measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" "$period" "$(elapsed "$t0" "$t1")" ;;
             *)
                 if ! method_args "$m"; then na_row "$c" "$m"; continue; fi
                 t0=$(now)
                 "$SKINSLIDE" -q "${margs[@]}" --patch "$w/patch.txt" --animation "$clip" \
                     --format obj -o "$dir" "$glb"
                 t1=$(now)
-                measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" 1 "$(elapsed "$t0" "$t1")" ;;
+                measure "$c" "$m" "$w/bind.obj" "$w/patch.txt" "$w/frames" "$dir" "$period" "$(elapsed "$t0" "$t1")" ;;
         esac
     done
 }
@@ -323,6 +370,14 @@ for c in "${case_list[@]}"; do
             d=$root/data/${c#data-}
             notes+=("$c: $("$PY" "$Q" patchinfo "$d/bind.obj" "$d/patch_plain.txt")")
             run_obj_case "$c" "$d/bind.obj" "$d/patch_plain.txt" "$d/frames" ;;
+        swing-*)
+            if [[ $c == swing-hand || $c == swing-camel ]] &&
+                [[ ! -e ${CGAL_DATA:-/usr/share/doc/libcgal-dev/data.tar.gz} ]]; then
+                "$root/scripts/deps.sh" libcgal-demo >"$work/apt-cgal.log" 2>&1 ||
+                    { tail -n 20 "$work/apt-cgal.log" >&2; echo "quality.sh: $c needs libcgal-demo" >&2; exit 1; }
+            fi
+            notes+=("$("$PY" "$root/scripts/make_swings.py" "$c" "$work/$c" --frames 60)")
+            run_obj_case "$c" "$work/$c/bind.obj" "$work/$c/patch.txt" "$work/$c/frames" 60 ;;
     esac
 done
 

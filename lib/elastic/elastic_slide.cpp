@@ -1,20 +1,15 @@
 #include "elastic/elastic_slide.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include <Eigen/Geometry>
 
 #include "core/error.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/force_density.h"
+#include "core/stopwatch.h"
+#include "mesh/measures.h"
 
 namespace skinslide {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Slid triangles whose normal turns against the frame's own (frame triangles with area only).
 int turned_triangles(const Patch& patch, const Positions3& frame, const Positions3& slid) {
@@ -50,7 +45,7 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   ElasticSlide result;
   ElasticReport& report = result.report;
   PatchSlide& slid = result.slid;
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   const ElasticResult relaxed = relax_patch(setup, points, options);
   slid.solve_seconds = seconds_since(t0);
   report.energy_before = relaxed.energy_before;

@@ -9,7 +9,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

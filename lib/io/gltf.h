@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/mesh_file.h"
+#include "mesh/slid_vertices.h"
 
 namespace skinslide {
 

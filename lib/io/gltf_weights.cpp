@@ -5,7 +5,7 @@
 #include "core/error.h"
 #include "io/gltf_accessor.h"
 #include "io/gltf_document.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

@@ -1,14 +1,8 @@
 #include "io/mesh_file.h"
 
 #include <algorithm>
-#include <cctype>
-#include <filesystem>
 
 #include "core/error.h"
-#include "io/atomic_write.h"
-#include "io/gltf.h"
-#include "io/obj_read.h"
-#include "io/obj_rewrite.h"
 
 namespace skinslide {
 
@@ -16,29 +10,6 @@ std::string MeshFile::where_face(Index face) const {
   if (face >= 0 && static_cast<size_t>(face) < face_lines.size())
     return path + ":" + std::to_string(face_lines[face]);
   return path + ": triangle " + std::to_string(face);
-}
-
-MeshFormat mesh_format(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".obj") return MeshFormat::Obj;
-  if (ext == ".gltf") return MeshFormat::Gltf;
-  if (ext == ".glb") return MeshFormat::Glb;
-  throw Error(ErrorKind::Usage,
-              path + ": unknown mesh format '" + ext + "' (expected .obj, .gltf or .glb)");
-}
-
-MeshFile read_mesh_file(const std::string& path, const MeshReadOptions& options) {
-  if (mesh_format(path) != MeshFormat::Obj) return read_gltf_file(path, options);
-  MeshFile file;
-  file.path = path;
-  file.format = mesh_format(path);
-  ObjMesh obj = read_obj(path);
-  file.mesh = std::move(obj.mesh);
-  file.face_lines = std::move(obj.face_lines);
-  file.obj = std::make_shared<const ObjText>(std::move(obj.text));
-  return file;
 }
 
 void require_same_topology(const MeshFile& bind, const MeshFile& frame) {
@@ -69,13 +40,6 @@ void release_faces(MeshFile& frame) {
   std::vector<Index>{0}.swap(m.face_start);
   std::vector<Index>().swap(m.face_vertices);
   std::vector<long>().swap(frame.face_lines);
-}
-
-void write_slid_mesh_file(const MeshFile& frame, const SlidVertices& slid,
-                          const std::string& out_path) {
-  if (frame.gltf) return write_gltf_file(frame, slid, out_path);
-  Positions3 positions = apply_slide(frame.mesh.positions, slid);
-  write_rewritten_obj(out_path, *frame.obj, frame.mesh.positions, positions);
 }
 
 }  // namespace skinslide

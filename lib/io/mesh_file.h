@@ -1,4 +1,5 @@
-// Mesh files in and out, whatever the format: the one entry point the CLI uses.
+// A mesh as read from a file (OBJ, glTF), with what is needed to write an edited copy of that file;
+// the frames' checks against the bind. Reading and writing whatever the format: io/mesh_formats.h.
 #pragma once
 
 #include <memory>
@@ -6,7 +7,6 @@
 #include <vector>
 
 #include "mesh/poly_mesh.h"
-#include "slide/transfer.h"
 
 namespace skinslide {
 
@@ -31,13 +31,6 @@ struct MeshFile {
   std::string where_face(Index face) const;  ///< "bind.obj:301" or "bind.glb: triangle 57"
 };
 
-/// Format from the file name's extension (.obj, .gltf, .glb; case-insensitive).
-/// \throw Error(Usage) for any other extension.
-MeshFormat mesh_format(const std::string& path);
-
-/// Reads a mesh file. \throw Error(Input) naming the path (and line) on any malformed input.
-MeshFile read_mesh_file(const std::string& path, const MeshReadOptions& options = {});
-
 /// Checks that `frame` has the bind's vertex count and exactly its faces.
 /// \throw Error(Input) naming the frame's file, and the line or face where they first differ.
 void require_same_topology(const MeshFile& bind, const MeshFile& frame);
@@ -46,11 +39,5 @@ void require_same_topology(const MeshFile& bind, const MeshFile& frame);
 /// and writing a frame need its positions and its file (about 27 MB less a frame in flight at 1M
 /// vertices). Afterwards frame.mesh has no faces.
 void release_faces(MeshFile& frame);
-
-/// Writes `frame`'s file to `out_path` with the vertices of `slid` moved; everything else is
-/// kept as it was. Atomic: a temporary file in the target folder, renamed when complete.
-/// \throw Error(Output) when the file cannot be written.
-void write_slid_mesh_file(const MeshFile& frame, const SlidVertices& slid,
-                          const std::string& out_path);
 
 }  // namespace skinslide

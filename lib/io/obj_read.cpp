@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

@@ -2,7 +2,7 @@
 
 #include "core/check.h"
 #include "io/atomic_write.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {

@@ -1,7 +1,7 @@
 #include "io/obj_write.h"
 
 #include "core/check.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 

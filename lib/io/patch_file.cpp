@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/number_format.h"
+#include "core/number_format.h"
 #include "io/token_lines.h"
 
 namespace skinslide {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -14,7 +13,8 @@
 
 #include "core/check.h"
 #include "core/error.h"
-#include "io/number_format.h"
+#include "core/file_extension.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {
@@ -166,9 +166,7 @@ CacheHeader parse_mdd(const std::string& path, std::string_view head, std::uint6
 }  // namespace
 
 std::optional<CacheFormat> cache_format(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(path);
   if (ext == ".pc2") return CacheFormat::Pc2;
   if (ext == ".mdd") return CacheFormat::Mdd;
   return std::nullopt;

@@ -1,20 +1,16 @@
 #include "paper/paper_slide.h"
 
 #include <algorithm>
-#include <chrono>
 #include <future>
 #include <utility>
 
 #include "core/check.h"
 #include "core/error.h"
-#include "unwrap/square_boundary.h"
+#include "core/stopwatch.h"
+#include "paper/square_boundary.h"
 
 namespace skinslide {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 Positions3 gather(const Positions3& positions, const std::vector<Index>& ids) {
   Positions3 out(ids.size());
@@ -177,7 +173,7 @@ PaperSlide paper_slide(const PaperSetup& setup, const Patch& patch, const Positi
   PaperSlide result;
   PaperReport& report = result.report;
   PatchSlide& slid = result.slid;
-  auto t0 = std::chrono::steady_clock::now();
+  auto t0 = Clock::now();
   const std::vector<double> q =
       force_densities(bar_lengths(points, patch.bars), options.density, options.q_floor);
   FrameNetSolution net = setup.solver->solve(q, frame_net_options(options));
@@ -189,7 +185,7 @@ PaperSlide paper_slide(const PaperSetup& setup, const Patch& patch, const Positi
   report.frame_net_flips = folds.flipped;
   slid.solve_seconds = seconds_since(t0);
 
-  t0 = std::chrono::steady_clock::now();
+  t0 = Clock::now();
   const bool by_image = options.locate == Locate::Image;
   IdImage image;
   if (by_image) image = id_raster(slid.net, patch.triangles, options.lookup_size);
@@ -229,67 +225,5 @@ PaperSlide paper_slide(const PaperSetup& setup, const Patch& patch, const Positi
   }
   return result;
 }
-
-}  // namespace skinslide
-
-namespace skinslide {
-
-Density parse_density(const std::string& name) {
-  if (name == "paper") return Density::Paper;
-  if (name == "inverse" || name == "length") return Density::Inverse;
-  if (name == "uniform") return Density::Uniform;
-  throw Error(ErrorKind::Usage, "unknown density '" + name + "' (paper, inverse, length, uniform)");
-}
-
-Holes parse_holes(const std::string& name) {
-  if (name == "free") return Holes::Free;
-  if (name == "fill") return Holes::Fill;
-  throw Error(ErrorKind::Usage, "unknown hole mode '" + name + "' (free, fill)");
-}
-
-FrameSolver parse_frame_solver(const std::string& name) {
-  if (name == "auto") return FrameSolver::Auto;
-  if (name == "cholesky") return FrameSolver::Cholesky;
-  if (name == "cg") return FrameSolver::Cg;
-  if (name == "multigrid") return FrameSolver::Multigrid;
-  throw Error(ErrorKind::Usage,
-              "unknown frame solver '" + name + "' (auto, cholesky, cg, multigrid)");
-}
-
-Locate parse_locate(const std::string& name) {
-  if (name == "walk") return Locate::Walk;
-  if (name == "image") return Locate::Image;
-  throw Error(ErrorKind::Usage, "unknown locate method '" + name + "' (walk, image)");
-}
-
-std::string to_string(Density d) {
-  switch (d) {
-    case Density::Paper:
-      return "paper";
-    case Density::Inverse:
-      return "inverse";
-    case Density::Uniform:
-      return "uniform";
-  }
-  return "?";
-}
-
-std::string to_string(Holes h) { return h == Holes::Free ? "free" : "fill"; }
-
-std::string to_string(FrameSolver s) {
-  switch (s) {
-    case FrameSolver::Auto:
-      return "auto";
-    case FrameSolver::Cholesky:
-      return "cholesky";
-    case FrameSolver::Cg:
-      return "cg";
-    case FrameSolver::Multigrid:
-      return "multigrid";
-  }
-  return "?";
-}
-
-std::string to_string(Locate l) { return l == Locate::Image ? "image" : "walk"; }
 
 }  // namespace skinslide

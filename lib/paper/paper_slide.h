@@ -15,63 +15,14 @@
 #include "core/types.h"
 #include "locate/id_raster.h"
 #include "locate/locate.h"
+#include "mesh/measures.h"
 #include "mesh/patch.h"
+#include "paper/bar_net.h"
+#include "paper/force_density.h"
+#include "paper/paper_options.h"
 #include "slide/patch_slide.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/force_density.h"
 
 namespace skinslide {
-
-/// What the non-outer boundary loops (holes) do in the bind net.
-enum class Holes {
-  Free,  ///< the paper: hole vertices are free nodes
-  Fill,  ///< each hole gets a virtual free node joined to every loop vertex
-};
-
-/// How each frame net is solved (same result within the CG tolerance).
-enum class FrameSolver {
-  Auto,       ///< per patch: Multigrid from kMultigridFreeNodes free nodes on, else Cholesky
-  Cholesky,   ///< sparse Cholesky, ordering and symbolic analysis reused by every frame
-  Cg,         ///< conjugate gradient (Jacobi), warm-started at the bind net
-  Multigrid,  ///< conjugate gradient preconditioned by an aggregation multigrid, warm-started
-};
-
-/// Where Auto switches to Multigrid: the frame system's free nodes. A factorisation grows as
-/// n^1.5 and a multigrid solve as n. With the multigrid's two-lane sweeps in Cuthill-McKee order,
-/// fused passes and its coarse steps' products taken from their sweeps, a frame net costs,
-/// Cholesky against multigrid (three interleaved runs each): on the benchmark's nets 1.6k free
-/// nodes 0.55 / 0.76 ms, 4.3k 1.85 / 1.99, 8.8k 4.86 / 4.29; on the ICT face (9.0k) 5.59 /
-/// 5.26. The crossover lies near 6k; the multigrid's set-up, with no ordering, is 1.6-2.4x
-/// shorter at every size (4.3k: 18.4 against 8.7 ms).
-constexpr int kMultigridFreeNodes = 6000;
-
-/// How each free vertex's bind-net point is found in the frame net (the same rule for picking
-/// among the triangles that hold it; README "The method, exactly", 7).
-enum class Locate {
-  Walk,   ///< walk the frame net from the vertex's own triangles
-  Image,  ///< look up a triangle-ID image of the frame net (the paper's way)
-};
-
-/// The paper method's tunables (README "Options"), with their defaults.
-struct PaperOptions {
-  Density density = Density::Inverse;
-  Holes holes = Holes::Fill;
-  double q_floor = 1e-3;  ///< lower bound of q (Density::Paper, Inverse)
-  FrameSolver frame_solver = FrameSolver::Auto;
-  double cg_tolerance = 1e-12;   ///< CG stops at |r| <= tol * |b| (Eigen's criterion)
-  int cg_max_iterations = 2000;  ///< past it the frame net is solved directly (counted)
-  Locate locate = Locate::Walk;
-  int lookup_size = kLookupSize;  ///< ID image side in pixels (Locate::Image)
-};
-
-Density parse_density(const std::string& name);           ///< throws Usage on an unknown name
-Holes parse_holes(const std::string& name);               ///< throws Usage on an unknown name
-FrameSolver parse_frame_solver(const std::string& name);  ///< throws Usage on an unknown name
-Locate parse_locate(const std::string& name);             ///< throws Usage on an unknown name
-std::string to_string(Density d);
-std::string to_string(Holes h);
-std::string to_string(FrameSolver s);
-std::string to_string(Locate l);
 
 /// The frame-net solver settings of `options` (CG tolerance and iteration cap).
 FrameNetOptions frame_net_options(const PaperOptions& options);

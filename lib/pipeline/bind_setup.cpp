@@ -9,8 +9,8 @@
 
 #include "core/check.h"
 #include "core/error.h"
-#include "unwrap/force_density.h"
-#include "unwrap/square_boundary.h"
+#include "mesh/measures.h"
+#include "mesh/outer_loop.h"
 
 namespace skinslide {
 namespace {

@@ -12,7 +12,7 @@
 #include "core/types.h"
 #include "io/mesh_file.h"
 #include "io/point_cache.h"
-#include "slide/transfer.h"
+#include "mesh/slid_vertices.h"
 
 namespace skinslide {
 

@@ -1,39 +1,28 @@
-// The one place where a run's method is chosen. Each method has the same shape in its own folder
-// (elastic/elastic_slide.h, paper/paper_slide.h): options, a per-patch bind-time set-up, a
-// per-frame function returning positions and a report. Here they become one std::variant each
-// (options, set-up, report), visited in method.cpp alone: the rest of the pipeline (bind set-up,
-// frames, report, log lines, dumps) asks these functions and never tests which method it runs.
+// The one place where a run's method is chosen. Each method has the same shape in its own folder:
+// its options, a per-patch bind-time set-up and a per-frame slide returning positions and a report
+// (elastic/elastic_slide.h, paper/paper_slide.h), and what a run holds and tells of it: every
+// patch's set-up, its figures for the report, its log text (elastic/elastic_method.h,
+// paper/paper_method.h). Here they become one std::variant each (set-up, report, totals), visited
+// in method.cpp alone: the rest of the pipeline (bind set-up, frames, report, log lines, dumps)
+// asks these functions and never tests which method it runs.
 #pragma once
 
-#include <array>
 #include <cstddef>
-#include <memory>
+#include <functional>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "core/figures.h"
 #include "core/types.h"
-#include "elastic/elastic_slide.h"
+#include "elastic/elastic_method.h"
 #include "mesh/patch.h"
-#include "paper/paper_slide.h"
+#include "paper/paper_method.h"
 #include "pipeline/options.h"
 #include "slide/patch_slide.h"
 
 namespace skinslide {
-
-/// The elastic method's bind-time data: its options and every patch's set-up.
-struct ElasticMethod {
-  ElasticOptions options;
-  /// Parallel to BindSetup::patches; null for a skipped patch.
-  std::vector<std::shared_ptr<const ElasticSetup>> patches;
-};
-
-/// The paper's method's bind-time data: its options and every patch's set-up.
-struct PaperMethod {
-  PaperOptions options;
-  std::vector<PaperSetup> patches;  ///< parallel to BindSetup::patches; no solver when skipped
-};
 
 /// A run's method with its bind-time data: plain, immutable once built, shared by every frame.
 using MethodSetup = std::variant<ElasticMethod, PaperMethod>;
@@ -41,13 +30,8 @@ using MethodSetup = std::variant<ElasticMethod, PaperMethod>;
 /// What the method did to one patch in one frame.
 using MethodReport = std::variant<ElasticReport, PaperReport>;
 
-/// A named figure of a report (the JSON report's members, the Python module's dict entries).
-using FigureValue = std::variant<long long, double, bool, std::string, std::vector<long long>>;
-struct Figure {
-  std::string key;
-  FigureValue value;
-};
-using Figures = std::vector<Figure>;
+/// The method's sums over every patch of every frame (the report's "totals").
+using MethodTotals = std::variant<ElasticTotals, PaperTotals>;
 
 // ---- Bind time --------------------------------------------------------------------------------
 
@@ -70,10 +54,6 @@ void set_up_patch(MethodSetup& method, std::size_t p, Patch& patch, const Positi
 
 /// The square's corners of patch `p` as mesh vertex ids, and whether they were chosen; none for
 /// the elastic method (its chart is a disk) or a skipped patch.
-struct SquareCorners {
-  std::array<Index, 4> vertices{};
-  bool chosen = false;
-};
 std::optional<SquareCorners> square_corners(const MethodSetup& method, std::size_t p,
                                             const Patch& patch);
 
@@ -107,14 +87,22 @@ Figures patch_figures(const MethodSetup& method, std::size_t p, const Patch& pat
 /// figures both methods have).
 Figures report_figures(const MethodReport& report);
 
-/// The method's sums over every patch of every frame (the report's "totals", between "moved" and
-/// "max_slide").
-Figures total_figures(const MethodSetup& method, const std::vector<MethodReport>& reports);
+/// The method's sums, none added yet.
+MethodTotals method_totals(const MethodSetup& method);
+
+/// Adds one patch's report of a frame to the sums.
+void add_to_totals(MethodTotals& totals, const MethodReport& report);
+
+/// The sums as the report's "totals" give them (between "moved" and "max_slide").
+Figures total_figures(const MethodTotals& totals);
+
+/// Patch p's report of one frame.
+using MethodReportAt = std::function<const MethodReport&(std::size_t p)>;
 
 /// A frame's log summary: the method's figures around `max_slide` (", max slide X").
-/// \param reports one per patch of `patches`
+/// \param report one per patch of `patches`
 std::string frame_summary(const MethodSetup& method, const std::vector<Patch>& patches,
-                          const std::vector<MethodReport>& reports, const std::string& max_slide);
+                          const MethodReportAt& report, const std::string& max_slide);
 
 /// A patch's -v line in a frame, up to its slide figures ("elastic 12 it (converged), ...").
 std::string patch_summary(const MethodSetup& method, std::size_t p, const MethodReport& report);

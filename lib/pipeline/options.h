@@ -1,16 +1,17 @@
 // The run's method and its tunables, and the animator's controls (README "Options", "Controls").
-// Each method's options live in its own folder (elastic/relax.h, paper/paper_slide.h) with their
-// defaults; this only says which one a run uses.
+// Each method's options live in its own folder with their defaults and their option table
+// (elastic/elastic_options.h, paper/paper_options.h); this only says which one a run uses.
 #pragma once
 
 #include <array>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "core/types.h"
-#include "elastic/relax.h"
-#include "paper/paper_slide.h"
+#include "elastic/elastic_options.h"
+#include "paper/paper_options.h"
 
 namespace skinslide {
 
@@ -27,6 +28,18 @@ SlideOptions parse_method(const std::string& name);
 
 /// "elastic" or "paper".
 std::string method_name(const SlideOptions& options);
+
+/// Calls `f(name, option_table<Options>())` for each method, in SlideOptions' order: what lists
+/// every method's options (the Python module's).
+template <class F>
+void for_each_method(F&& f) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (f(method_name(SlideOptions(std::in_place_index<I>)),
+       option_table<std::variant_alternative_t<I, SlideOptions>>()),
+     ...);
+  }
+  (std::make_index_sequence<std::variant_size_v<SlideOptions>>());
+}
 
 /// The animator's controls (README "Controls"): where and how much skin slides, and how a patch
 /// is laid on the square. Every member's default leaves the method as README "The method" states.

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <type_traits>
 #include <variant>
 
 #include "core/version.h"
-#include "io/number_format.h"
+#include "io/atomic_write.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 namespace {
@@ -129,7 +131,7 @@ std::string patches_json(const BindSetup& setup) {
 struct FrameSums {
   long long moved = 0;
   double max_slide = 0;
-  std::vector<MethodReport> reports;  ///< every patch of every frame
+  MethodTotals totals;  ///< the method's, over every patch of every frame
   double read = 0, solve = 0, locate = 0, transfer = 0, write = 0;
 };
 
@@ -141,7 +143,7 @@ std::string frame_json(const ReportFrame& f, FrameSums& sums) {
     patches.push_back(add(patch, frame_figures(r)).str());
     sums.moved += r.moved;
     sums.max_slide = std::max(sums.max_slide, r.max_slide);
-    sums.reports.push_back(r.method);
+    add_to_totals(sums.totals, r.method);
     sums.solve += r.solve_seconds;
     sums.locate += r.locate_seconds;
     sums.transfer += r.transfer_seconds;
@@ -181,16 +183,43 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   root.add("controls", controls_json(setup, run));
   root.add("patches", patches_json(setup));
   FrameSums sums;
+  sums.totals = method_totals(setup.method);
   std::vector<std::string> frames;
   for (const ReportFrame& f : run.frames) frames.push_back(frame_json(f, sums));
   root.add("frames", array(frames, 2));
   Object totals(2);
   totals.add("frames", number(static_cast<long long>(run.frames.size())))
       .add("moved", number(sums.moved));
-  add(totals, total_figures(setup.method, sums.reports)).add("max_slide", number(sums.max_slide));
+  add(totals, total_figures(sums.totals)).add("max_slide", number(sums.max_slide));
   root.add("totals", totals.str());
   if (run.timings) root.add("timings", timings_json(run, sums));
   return root.str() + "\n";
+}
+
+void record_frame(ReportFrame& record, const std::string& source, const std::string& out_path,
+                  double read_seconds, double write_seconds,
+                  std::vector<PatchFrameReport> patches) {
+  record.path = source;
+  record.output = out_path;
+  record.read_seconds = read_seconds;
+  record.write_seconds = write_seconds;
+  record.patches = std::move(patches);
+  for (PatchFrameReport& r : record.patches) {
+    r.frame_net = {};
+    r.id_image = {};
+  }
+}
+
+void write_run_report(const RunOptions& o, const BindSetup& setup, double wall_seconds,
+                      RunReport& report) {
+  report.bind = o.bind;
+  report.patch_files = o.patches;
+  report.timings = o.report_timings;
+  report.wall_seconds = wall_seconds;
+  std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });
+  write_file_atomic(o.report, report_json(setup, report));
+  const std::filesystem::path report_folder = std::filesystem::path(o.report).parent_path();
+  sync_folder(report_folder.empty() ? "." : report_folder.string());
 }
 
 }  // namespace skinslide

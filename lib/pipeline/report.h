@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pipeline/bind_setup.h"
+#include "pipeline/run_options.h"
 #include "pipeline/slide_frame.h"
 
 namespace skinslide {
@@ -47,5 +48,16 @@ struct RunReport {
 ///   stage summed over frames: bind_setup, read, solve, locate, transfer, write; wall} }
 /// Skipped patches report zeros. Vertex ids are mesh ids.
 std::string report_json(const BindSetup& setup, const RunReport& run);
+
+/// The report's record of one frame: its figures, not its nets (`patches` are moved in, their
+/// frame nets and ID images dropped).
+void record_frame(ReportFrame& record, const std::string& source, const std::string& out_path,
+                  double read_seconds, double write_seconds, std::vector<PatchFrameReport> patches);
+
+/// Writes the report (`o.report`) last and atomically, then syncs its folder: the bind and patch
+/// files from `o`, the frames `report` recorded (under --keep-going those written).
+/// \throw Error(Output) when it cannot be written.
+void write_run_report(const RunOptions& o, const BindSetup& setup, double wall_seconds,
+                      RunReport& report);
 
 }  // namespace skinslide

@@ -1,19 +1,15 @@
 #include "pipeline/slide_frame.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/stopwatch.h"
 
 namespace skinslide {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // std of log(L / L_bind) over the bars; `points` indexed by local ids.
 double edge_log_spread(const Patch& patch, const Positions3& points) {
@@ -47,7 +43,7 @@ PatchFrameReport slide_and_gather(const BindSetup& setup, std::size_t p,
   PatchSlide& slid = slide.slid;
   report.solve_seconds = slid.solve_seconds;
   report.locate_seconds = slid.locate_seconds;
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   // The slid patch as a whole is only needed for its edge-length spread.
   Positions3 output;
   if (extras.edge_spread) output = points;
@@ -88,13 +84,6 @@ Figures frame_figures(const PatchFrameReport& report) {
   figures.push_back({"spread_frame", report.spread_frame});
   figures.push_back({"spread_slid", report.spread_slid});
   return figures;
-}
-
-std::vector<MethodReport> method_reports(const std::vector<PatchFrameReport>& patches) {
-  std::vector<MethodReport> reports;
-  reports.reserve(patches.size());
-  for (const PatchFrameReport& r : patches) reports.push_back(r.method);
-  return reports;
 }
 
 FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,

@@ -9,7 +9,7 @@
 #include "locate/id_raster.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/method.h"
-#include "slide/transfer.h"
+#include "mesh/slid_vertices.h"
 
 namespace skinslide {
 
@@ -58,8 +58,5 @@ FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
 /// A patch's figures in a frame, in the report's order: the method's (report_figures), then the
 /// slide's (moved, max_slide, mean_slide, spread_frame, spread_slid).
 Figures frame_figures(const PatchFrameReport& report);
-
-/// The method's reports of a frame's patches, in patch order.
-std::vector<MethodReport> method_reports(const std::vector<PatchFrameReport>& patches);
 
 }  // namespace skinslide

@@ -19,7 +19,8 @@
 #include <pybind11/stl.h>
 
 #include "core/version.h"
-#include "io/mesh_file.h"
+#include "core/option.h"
+#include "io/mesh_formats.h"
 #include "io/patch_file.h"
 #include "io/vertex_list.h"
 #include "skinslide.h"
@@ -145,37 +146,84 @@ T take(py::dict& options, const char* key, T value) {
   return value;
 }
 
+// The options of `table` taken from keyword arguments into `options`: numbers as they are, words
+// by their option's words (\throw Error(Usage) naming an unknown one).
+template <class Options>
+void take_options(py::dict& kwargs, Options& options) {
+  for (const Option<Options>& option : option_table<Options>()) {
+    const std::string key = api_name(option.name);
+    std::visit(
+        [&](const auto& value) {
+          if constexpr (requires { value.member; })
+            options.*value.member = take(kwargs, key.c_str(), options.*value.member);
+          else
+            value.set(options, take(kwargs, key.c_str(), value.get(options)));
+        },
+        option.value);
+  }
+}
+
 // The method and its options from keyword arguments; what is left over is refused, by name.
 SlideOptions slide_options(const std::string& method, py::dict options) {
   SlideOptions out = parse_method(method);
-  if (auto* e = std::get_if<ElasticOptions>(&out)) {
-    e->rotation_fits = take(options, "rotation_fits", e->rotation_fits);
-    e->max_iterations = take(options, "max_iterations", e->max_iterations);
-    e->tolerance = take(options, "tolerance", e->tolerance);
-  } else {
-    PaperOptions& p = std::get<PaperOptions>(out);
-    p.density = parse_density(take(options, "density", to_string(p.density)));
-    p.holes = parse_holes(take(options, "holes", to_string(p.holes)));
-    p.q_floor = take(options, "q_floor", p.q_floor);
-    p.frame_solver = parse_frame_solver(take(options, "frame_solver", to_string(p.frame_solver)));
-    p.cg_tolerance = take(options, "cg_tolerance", p.cg_tolerance);
-    p.cg_max_iterations = take(options, "cg_max_iterations", p.cg_max_iterations);
-    p.locate = parse_locate(take(options, "locate", to_string(p.locate)));
-    p.lookup_size = take(options, "lookup_size", p.lookup_size);
-  }
-  // What is left is the other method's or nobody's.
-  const char* const other_method[] = {
-      "rotation_fits", "max_iterations", "tolerance",         "density", "holes",      "q_floor",
-      "frame_solver",  "cg_tolerance",   "cg_max_iterations", "locate",  "lookup_size"};
-  const std::string other = method == "paper" ? "elastic" : "paper";
+  std::visit([&](auto& o) { take_options(options, o); }, out);
+  // What is left is another method's or nobody's.
   for (const auto& item : options) {
     const std::string name = py::str(item.first);
-    for (const char* known : other_method)
-      if (name == known)
-        usage(name + " applies to method '" + other + "' only, not to method '" + method + "'");
+    for_each_method([&](const std::string& other, const auto& table) {
+      for (const auto& option : table)
+        if (other != method && api_name(option.name) == name)
+          usage(name + " applies to method '" + other + "' only, not to method '" + method + "'");
+    });
     usage("unknown option " + name);
   }
   return out;
+}
+
+// One option as option_specs() lists it (lib/python/README.md).
+template <class Options>
+py::dict option_spec(const Option<Options>& option, const std::string& method) {
+  const Options defaults{};
+  py::dict spec;
+  spec["name"] = api_name(option.name);
+  spec["option"] = "--" + option.name;
+  spec["method"] = method.empty() ? py::object(py::none()) : py::object(py::str(method));
+  std::visit(
+      [&](const auto& value) {
+        if constexpr (requires { value.member; }) {
+          using T = std::decay_t<decltype(defaults.*value.member)>;
+          spec["type"] = std::is_same_v<T, double> ? "float" : "int";
+          spec["default"] = defaults.*value.member;
+          spec["min"] = value.low;
+          spec["max"] = value.high;
+        } else {
+          spec["type"] = "word";
+          spec["default"] = value.get(defaults);
+          spec["words"] = value.words;
+          // The words naming values of their own (not another spelling): what a menu offers.
+          py::list choices;
+          for (const std::string& word : value.words) {
+            Options chosen = defaults;
+            value.set(chosen, word);
+            if (value.get(chosen) == word) choices.append(word);
+          }
+          spec["choices"] = choices;
+        }
+      },
+      option.value);
+  spec["help"] = option.help;
+  return spec;
+}
+
+// Every option the module takes: the run's (method, strength), then each method's.
+py::list option_specs() {
+  py::list specs;
+  for (const Option<RunOptions>& option : option_table<RunOptions>())
+    specs.append(option_spec(option, ""));
+  for_each_method([&](const std::string& method, const auto& table) {
+    for (const auto& option : table) specs.append(option_spec(option, method));
+  });
+  return specs;
 }
 
 // ---- Reports ----------------------------------------------------------------------------------
@@ -330,6 +378,11 @@ PYBIND11_MODULE(skinslide, m) {
       },
       py::arg("method") = method_name(SlideOptions{}),
       "The method's options with their defaults, as Slider takes them (and 'method').");
+  m.def("option_specs", &option_specs,
+        "Every option Slider takes, as the command line declares it: a dict each with name, "
+        "option (the command line's), method (None: either), type ('int', 'float' or 'word'), "
+        "default, min and max (numbers), words and choices (words; choices without other "
+        "spellings), help.");
   m.def("read_mesh", &read_mesh, py::arg("path"), py::arg("mesh") = "",
         "Reads an .obj, .gltf or .glb mesh: (positions (V, 3), face_vertices, face_sizes), ids "
         "as skinslide numbers them (glTF: welded vertices, triangles in primitive order).");

@@ -1,6 +1,6 @@
 // CHOLMOD (SuiteSparse), set up one way for the whole program: the paper method's frame nets and
 // the elastic method's bind-time factors order and factorise through here, and only solve/ and
-// unwrap/ include it.
+// paper/bar_net.cpp include it.
 #pragma once
 
 #include <cholmod.h>

@@ -383,5 +383,25 @@ grep -qF "nan.0001.obj:7:" "$tmp/stderr" && grep -qF "fewer.0001.obj:25: face in
   fail "keep_going_bad_frames does not name both bad frames"
 expect keep_going_exit_code_of_first 4 "2 failed" -o "$tmp/hasdir" --keep-going --patch $P $B $F "$tmp/nan.0001.obj"
 
+# --- config files (--config): every key an option, every value checked as on the command line ---
+printf '# a shot\nmethd = "paper"\npatch = ["all.txt"]\n' >"$tmp/typo.toml"
+expect config_unknown_key 2 "typo.toml:2: unknown key 'methd'; the nearest option is 'method'" --config "$tmp/typo.toml" $B $F
+printf '; farm defaults\ntolerence = 0.5\npatch = all.txt\n' >"$tmp/typo.ini"
+expect config_unknown_key_ini 2 "typo.ini:2: unknown key 'tolerence'; the nearest option is 'tolerance'" --config "$tmp/typo.ini" $B $F
+printf 'patches = ["all.txt"]\n' >"$tmp/required.toml"
+expect config_unknown_key_not_a_missing_option 2 "required.toml:1: unknown key 'patches'; the nearest option is 'patch'" --config "$tmp/required.toml" $B $F
+printf 'patch = ["all.txt"]\n[run]\nthreads = 2\n' >"$tmp/section.toml"
+expect config_key_in_a_section 2 "section.toml:3: unknown key 'run.threads'; the nearest option is 'threads'" --config "$tmp/section.toml" $B $F
+printf 'patch = ["all.txt",\n         "all.txt"]\nq_floor = 0.01\n' >"$tmp/array.toml"
+expect config_key_after_an_array 2 "array.toml:3: unknown key 'q_floor'; the nearest option is 'q-floor'" --config "$tmp/array.toml" $B $F
+printf 'patch = ["all.txt"]\ntolerance = 5\n' >"$tmp/range.toml"
+expect config_value_out_of_range 2 "--tolerance: Value 5 not in range 0.000000 to 1.000000" --config "$tmp/range.toml" $B $F
+printf 'patch = ["all.txt"]\nmethod = "paper"\ndensity = "papr"\n' >"$tmp/word.toml"
+expect config_value_not_a_word 2 "--density: papr not in {paper,inverse,length,uniform}" --config "$tmp/word.toml" $B $F
+printf 'patch = ["all.txt"]\nmethod = "paper"\ntolerance = 0.1\n' >"$tmp/other.toml"
+expect config_other_methods_option 2 "--tolerance: applies to --method elastic only, not to --method paper" --config "$tmp/other.toml" $B $F
+printf '# every key an option\npatch = ["all.txt"]\nkeep-going\n[default]\nstrength = 0.5\n' >"$tmp/good.toml"
+expect config_keys_all_options 0 "1 frames slid" --config "$tmp/good.toml" $B $F
+
 echo "bad_inputs: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

@@ -25,15 +25,16 @@
 #include "core/allocator.h"
 #include "core/error.h"
 #include "elastic/relax.h"
-#include "io/mesh_file.h"
+#include "io/mesh_formats.h"
 #include "io/patch_file.h"
 #include "locate/locate.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/method.h"
 #include "pipeline/options.h"
 #include "pipeline/slide_frame.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/force_density.h"
+#include "paper/bar_net.h"
+#include "paper/force_density.h"
+#include "mesh/measures.h"
 
 using namespace skinslide;
 namespace fs = std::filesystem;

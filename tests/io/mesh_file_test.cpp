@@ -1,4 +1,5 @@
 #include "io/mesh_file.h"
+#include "io/mesh_formats.h"
 
 #include <gtest/gtest.h>
 

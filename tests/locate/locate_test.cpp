@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "locate/barycentric.h"
-#include "unwrap/bar_net.h"
+#include "mesh/measures.h"
 
 namespace skinslide {
 namespace {

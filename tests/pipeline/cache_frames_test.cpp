@@ -18,7 +18,7 @@
 #include "io/atomic_write.h"
 #include "io/cache_chunks.h"
 #include "io/gltf.h"
-#include "io/mesh_file.h"
+#include "io/mesh_formats.h"
 #include "io/obj_read.h"
 #include "io/obj_rewrite.h"
 #include "pipeline/run.h"

@@ -11,8 +11,8 @@
 #include "helpers/samples.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/slide_frame.h"
-#include "unwrap/bar_net.h"
-#include "unwrap/square_boundary.h"
+#include "mesh/measures.h"
+#include "paper/square_boundary.h"
 
 namespace skinslide {
 namespace {

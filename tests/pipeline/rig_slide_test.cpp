@@ -18,7 +18,7 @@
 #include "pipeline/slide_frame.h"
 #include "pose/animation.h"
 #include "helpers/samples.h"
-#include "slide/transfer.h"
+#include "mesh/slid_vertices.h"
 
 namespace skinslide {
 namespace {

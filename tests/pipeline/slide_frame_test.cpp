@@ -14,7 +14,7 @@
 #include "helpers/samples.h"
 #include "io/obj_read.h"
 #include "io/patch_file.h"
-#include "unwrap/bar_net.h"
+#include "mesh/measures.h"
 
 namespace skinslide {
 namespace {

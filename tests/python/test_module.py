@@ -151,3 +151,29 @@ def test_errors_raise_with_their_kinds(tmp_path):
     bad.write_text("1 2\nthree\n")
     with pytest.raises(skinslide.InputError, match=r"bad.txt:2"):
         skinslide.read_patch(str(bad))
+
+
+def test_option_specs_declare_what_the_slider_takes():
+    specs = skinslide.option_specs()
+    by_name = {spec["name"]: spec for spec in specs}
+    assert len(by_name) == len(specs), "one spec a name"
+    assert [s["name"] for s in specs if s["method"] is None] == ["strength", "method"]
+    assert by_name["method"]["choices"] == METHODS and by_name["method"]["default"] == "elastic"
+    for method in METHODS:
+        defaults = {s["name"]: s["default"] for s in specs if s["method"] == method}
+        assert skinslide.default_options(method) == {"method": method, **defaults}
+    assert by_name["density"]["choices"] == ["paper", "inverse", "uniform"]
+    assert by_name["density"]["words"] == ["paper", "inverse", "length", "uniform"]
+    assert by_name["q_floor"]["option"] == "--q-floor" and by_name["q_floor"]["type"] == "float"
+    positions, face_vertices, face_sizes = skinslide.read_mesh(str(DATA / "elbow" / "bind.obj"))
+    patch = skinslide.read_patch(str(DATA / "elbow" / "patch.txt"))
+    for spec in specs:
+        if spec["method"] is None or spec["type"] == "word":
+            continue
+        # The ends of the range are taken; past them the Slider refuses, naming the option.
+        for end, past in ((spec["min"], spec["min"] - 1), (spec["max"], spec["max"] * 2)):
+            skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes,
+                             method=spec["method"], **{spec["name"]: end})
+            with pytest.raises(skinslide.UsageError, match=spec["name"] + " = "):
+                skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes,
+                                 method=spec["method"], **{spec["name"]: past})

@@ -38,15 +38,22 @@ KEY_PREFIX = "skinslide"  # its shape keys: skinslide.0001, ...
 
 # ---- Settings -----------------------------------------------------------------------------------
 
-def _defaults(method):
-    """The library's own option defaults (none repeated here)."""
-    if skinslide is None:
-        return {}
-    return skinslide.default_options(method)
+# The options as the module declares them (name, default, range or words, help; the run's
+# strength and method, then each method's): none of them is written again here.
+OPTION_SPECS = skinslide.option_specs() if skinslide is not None else []
 
 
-_ELASTIC = _defaults("elastic")
-_PAPER = _defaults("paper")
+def _option_property(spec):
+    """The Blender property of one option."""
+    common = {"name": spec["name"].replace("_", " ").capitalize(), "description": spec["help"],
+              "default": spec["default"]}
+    if spec["type"] == "word":
+        return bpy.props.EnumProperty(items=[(w, w.capitalize(), "") for w in spec["choices"]],
+                                      **common)
+    if spec["type"] == "int":
+        return bpy.props.IntProperty(min=spec["min"], max=spec["max"], **common)
+    return bpy.props.FloatProperty(min=spec["min"], max=spec["max"],
+                                   soft_max=min(spec["max"], 1.0), precision=6, **common)
 
 
 def _group_items(self, context):
@@ -67,34 +74,20 @@ class SkinslideSettings(bpy.types.PropertyGroup):
         name="Pins", description="Vertices of this group do not slide; the skin around them does")
     weight_group: bpy.props.StringProperty(
         name="Weights", description="Slide weight per vertex (0 stays, 1 slides); none: 1")
-    strength: bpy.props.FloatProperty(name="Strength", default=1.0, min=0.0, soft_max=1.0,
-                                      description="Multiplies every slide weight")
-    method: bpy.props.EnumProperty(
-        name="Method",
-        items=[("elastic", "Elastic", "Relax in a fixed chart of the patch (the default)"),
-               ("paper", "Paper", "Yang & Zhang's bar nets")])
-    rotation_fits: bpy.props.IntProperty(name="Rotation fits", min=1, max=1000,
-                                         default=_ELASTIC.get("rotation_fits", 1))
-    max_iterations: bpy.props.IntProperty(name="Max iterations", min=0, max=100000,
-                                          default=_ELASTIC.get("max_iterations", 0))
-    tolerance: bpy.props.FloatProperty(name="Tolerance", min=0.0, max=1.0, precision=6,
-                                       default=_ELASTIC.get("tolerance", 0.0))
-    density: bpy.props.EnumProperty(
-        name="Density", default=_PAPER.get("density", "inverse"),
-        items=[(d, d.capitalize(), "") for d in ("inverse", "uniform", "paper")])
-    holes: bpy.props.EnumProperty(name="Holes", default=_PAPER.get("holes", "fill"),
-                                  items=[(h, h.capitalize(), "") for h in ("fill", "free")])
     frame_start: bpy.props.IntProperty(name="Start", default=1)
     frame_end: bpy.props.IntProperty(name="End", default=250)
     use_scene_range: bpy.props.BoolProperty(name="Scene range", default=True)
 
 
+for _spec in OPTION_SPECS:  # strength, method and every method's options
+    SkinslideSettings.__annotations__[_spec["name"]] = _option_property(_spec)
+
+
 def slider_options(s):
-    """The Slider keyword options of the settings `s`."""
-    if s.method == "elastic":
-        return {"rotation_fits": s.rotation_fits, "max_iterations": s.max_iterations,
-                "tolerance": s.tolerance}
-    return {"density": s.density, "holes": s.holes}
+    """The Slider keyword options of the settings `s`: those of its method that were set. The
+    others keep the library's defaults to the bit (a float property holds a float32)."""
+    return {spec["name"]: getattr(s, spec["name"]) for spec in OPTION_SPECS
+            if spec["method"] == s.method and s.is_property_set(spec["name"])}
 
 
 # ---- The bake ---------------------------------------------------------------------------------
@@ -280,16 +273,10 @@ class SKINSLIDE_PT_panel(bpy.types.Panel):
             col.prop_search(s, "patch_group", obj, "vertex_groups")
         col.prop_search(s, "pin_group", obj, "vertex_groups")
         col.prop_search(s, "weight_group", obj, "vertex_groups")
-        col.prop(s, "strength")
         col.separator()
-        col.prop(s, "method")
-        if s.method == "elastic":
-            col.prop(s, "rotation_fits")
-            col.prop(s, "max_iterations")
-            col.prop(s, "tolerance")
-        else:
-            col.prop(s, "density")
-            col.prop(s, "holes")
+        for spec in OPTION_SPECS:  # strength, method, then the chosen method's options
+            if spec["method"] in (None, s.method):
+                col.prop(s, spec["name"])
         col.separator()
         col.prop(s, "use_scene_range")
         row = col.row(align=True)

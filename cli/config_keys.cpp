@@ -1,0 +1,121 @@
+#include "config_keys.h"
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+
+namespace skinslide::cli {
+namespace {
+
+// The options a config file may set, by the names CLI11 matches a key against: long names, and a
+// positional's name.
+std::vector<std::string> option_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : app.get_options()) {
+    if (!option->get_configurable()) continue;
+    for (const std::string& name : option->get_lnames()) names.push_back(name);
+    if (option->get_lnames().empty() && option->get_snames().empty())
+      names.push_back(option->get_name(true));
+  }
+  return names;
+}
+
+// Levenshtein distance: the fewest one-character insertions, deletions and substitutions.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The name nearest to `key` (the first of equals, in declaration order).
+std::string nearest(const std::string& key, const std::vector<std::string>& names) {
+  std::string best;
+  std::size_t best_distance = std::numeric_limits<std::size_t>::max();
+  for (const std::string& name : names)
+    if (const std::size_t d = edit_distance(key, name); d < best_distance) {
+      best = name;
+      best_distance = d;
+    }
+  return best;
+}
+
+// As CLI11 applies a config item (App::_parse_single_config): the app has no subcommands, so a
+// key under a section or a dotted prefix names nothing.
+bool names_an_option(const CLI::App& app, const ConfigKey& key) {
+  if (!key.parents.empty()) return false;
+  return app.get_option_no_throw("--" + key.name) != nullptr ||
+         (key.name.size() == 1 && app.get_option_no_throw("-" + key.name) != nullptr) ||
+         app.get_option_no_throw(key.name) != nullptr;
+}
+
+std::string full_name(const ConfigKey& key) {
+  std::string name;
+  for (const std::string& parent : key.parents) name += parent + ".";
+  return name + key.name;
+}
+
+}  // namespace
+
+std::vector<ConfigKey> config_keys(std::istream& in) {
+  namespace detail = CLI::detail;
+  std::vector<ConfigKey> keys;
+  std::string section = "default";
+  long number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    detail::trim(line);
+    if (line.size() < 3) continue;
+    if (line.front() == '[' && line.back() == ']') {
+      section = line.substr(1, line.size() - 2);
+      if (section.size() > 1 && section.front() == '[' && section.back() == ']')
+        section = section.substr(1, section.size() - 2);  // TOML's [[table]]
+      continue;
+    }
+    if (line.front() == ';' || line.front() == '#') continue;
+    ConfigKey key;
+    key.line = number;
+    const std::size_t equals = line.find('=');
+    std::string name = line.substr(0, equals);
+    if (equals != std::string::npos) {
+      std::string value = detail::trim_copy(line.substr(equals + 1));
+      value.erase(std::min(value.find('#'), value.size()));
+      detail::trim(value);
+      // An array may run over the lines up to its closing bracket: they hold no key.
+      if (value.size() > 1 && value.front() == '[')
+        for (std::string more; value.back() != ']' && std::getline(in, more); ++number)
+          value += detail::trim(more);
+    } else {
+      name.erase(std::min(name.find('#'), name.size()));
+    }
+    detail::trim(name);
+    if (name.find('.') == std::string::npos) detail::remove_quotes(name);
+    key.parents = detail::generate_parents(section, name, '.');
+    key.name = name;
+    keys.push_back(std::move(key));
+  }
+  return keys;
+}
+
+void check_config_keys(const CLI::App& app) {
+  const CLI::Option* config = app.get_config_ptr();
+  if (config == nullptr || config->count() == 0) return;
+  const std::string path = config->results().front();
+  std::ifstream in(path);
+  if (!in) return;  // CLI11 names a file it cannot read
+  for (const ConfigKey& key : config_keys(in))
+    if (!names_an_option(app, key))
+      throw CLI::ConfigError(path + ":" + std::to_string(key.line) + ": unknown key '" +
+                             full_name(key) + "'; the nearest option is '" +
+                             nearest(key.name, option_names(app)) + "'");
+}
+
+}  // namespace skinslide::cli

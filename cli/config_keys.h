@@ -1,0 +1,33 @@
+// A --config file's keys, held against the options (README "Controls", config file). CLI11 reads
+// a TOML or INI file's values but drops their lines, and passes over a key that names no option:
+// a misspelt key would leave its option at the default without a word. Here every key must name
+// an option the command line declared (the option tables' and the command line's own).
+#pragma once
+
+#include <istream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace skinslide::cli {
+
+/// One key of a config file, where CLI11 reads it.
+struct ConfigKey {
+  long line = 0;                     ///< 1-based line of the key
+  std::vector<std::string> parents;  ///< its [section] (other than "default") and dotted prefix
+  std::string name;                  ///< the key itself, quotes removed
+};
+
+/// The keys of a TOML or INI config file, read by CLI11's rules (CLI::ConfigBase::from_config):
+/// `key = value` or a bare `flag`, `#` and `;` comment lines, [sections], arrays over several
+/// lines, lines shorter than 3 characters skipped.
+std::vector<ConfigKey> config_keys(std::istream& in);
+
+/// After a parse (or a failed one): with a --config file, each of its keys names an option of
+/// `app` as CLI11 finds it (`--key`, `-k`, a positional's name), at the top level.
+/// \throw CLI::ConfigError "<file>:<line>: unknown key '<key>'; the nearest option is '<name>'"
+///        (nearest by edit distance among the options a config file may set).
+void check_config_keys(const CLI::App& app);
+
+}  // namespace skinslide::cli

@@ -1,0 +1,31 @@
+#include "exit_status.h"
+
+#include <cstdio>
+#include <new>
+
+#include "core/error.h"
+
+namespace skinslide::cli {
+
+int parse_error_exit(const CLI::App& app, const CLI::ParseError& error, const char* program) {
+  if (error.get_exit_code() == 0) return app.exit(error);
+  std::fprintf(stderr, "%s: error: %s\nRun with --help for the options.\n", program, error.what());
+  return exit_code(ErrorKind::Usage);
+}
+
+int exit_status(const char* program, const std::function<int()>& work) {
+  try {
+    return work();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return exit_code(e.kind());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: error: out of memory\n", program);
+    return exit_code(ErrorKind::Internal);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: internal error: %s\n", program, e.what());
+    return exit_code(ErrorKind::Internal);
+  }
+}
+
+}  // namespace skinslide::cli

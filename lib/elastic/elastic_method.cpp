@@ -1,0 +1,81 @@
+#include "elastic/elastic_method.h"
+
+#include <algorithm>
+
+#include "core/number_format.h"
+#include "mesh/patch_figures.h"
+
+namespace skinslide {
+
+void set_up_patch(ElasticMethod& method, std::size_t p, Patch& patch, const Positions3& points,
+                  const std::vector<double>& weight) {
+  method.patches[p] = elastic_patch_setup(patch, points, weight);
+}
+
+ElasticSlide slide_patch(const ElasticMethod& method, std::size_t p, const Patch& patch,
+                         const Positions3& points, const std::vector<double>& weight,
+                         int id_image_size) {
+  if (patch.skipped) return {};
+  return elastic_slide(*method.patches[p], patch, points, weight, method.options, id_image_size);
+}
+
+std::string method_label(const ElasticMethod&) { return "method elastic"; }
+
+Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& patch) {
+  const ElasticSetup* e = method.patches[p].get();
+  Figures f = patch_counts(patch);
+  f.push_back({"moving", static_cast<long long>(e ? e->movable.size() : 0)});
+  for (Figure& loop : patch_loops(patch)) f.push_back(std::move(loop));
+  f.push_back({"skipped", patch.skipped});
+  f.push_back({"chart_weights", std::string(!e                         ? "none"
+                                            : e->chart.uniform_weights ? "uniform"
+                                                                       : "mean value")});
+  return f;
+}
+
+Figures report_figures(const ElasticReport& r) {
+  return {{"energy_before", r.energy_before},
+          {"energy_after", r.energy_after},
+          {"iterations", static_cast<long long>(r.iterations)},
+          {"solves", static_cast<long long>(r.solves)},
+          {"solve_iterations", static_cast<long long>(r.solve_iterations)},
+          {"stop", r.stop.empty() ? std::string("skipped") : r.stop},
+          {"held", static_cast<long long>(r.held)},
+          {"flips", static_cast<long long>(r.slid_flips)}};
+}
+
+void ElasticTotals::add(const ElasticReport& r) {
+  iterations += r.iterations;
+  held += r.held;
+  flips += r.slid_flips;
+}
+
+Figures ElasticTotals::figures() const {
+  return {{"iterations", iterations}, {"held", held}, {"flips", flips}};
+}
+
+std::string frame_summary(const std::vector<Patch>& patches,
+                          const std::function<const ElasticReport&(std::size_t)>& report,
+                          const std::string& max_slide) {
+  int iterations = 0, flips = 0;
+  double before = 0, after = 0;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    if (patches[p].skipped) continue;
+    const ElasticReport& r = report(p);
+    iterations = std::max(iterations, r.iterations);
+    flips += r.slid_flips;
+    before += r.energy_before;
+    after += r.energy_after;
+  }
+  return "elastic " + std::to_string(iterations) + " it, energy left " +
+         (before > 0 ? log_number(100 * after / before) + "%" : std::string("0")) + ", flips " +
+         std::to_string(flips) + max_slide;
+}
+
+std::string patch_summary(const ElasticReport& r) {
+  return "elastic " + std::to_string(r.iterations) + " it (" + r.stop + "), energy " +
+         log_number(r.energy_before) + " -> " + log_number(r.energy_after) + ", held " +
+         std::to_string(r.held) + ", flips " + std::to_string(r.slid_flips);
+}
+
+}  // namespace skinslide

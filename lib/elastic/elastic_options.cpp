@@ -1,0 +1,23 @@
+#include "elastic/elastic_options.h"
+
+namespace skinslide {
+
+template <>
+const OptionTable<ElasticOptions>& option_table<ElasticOptions>() {
+  using O = ElasticOptions;
+  static const OptionTable<O> table = {
+      {"rotation-fits",
+       "Elastic: ARAP local/global rounds (fit each triangle's rotation, then relax with them "
+       "held); more reach lower energies, fewer pop less from frame to frame",
+       NumberOption<O, int>{&O::rotation_fits, 1, 1000}},
+      {"max-iterations", "Elastic: Gauss-Newton steps per round at most",
+       NumberOption<O, int>{&O::max_iterations, 0, 100000}},
+      {"tolerance",
+       "Elastic: a round stops at the first step that lowers its energy by less than this "
+       "fraction of its starting energy",
+       NumberOption<O, double>{&O::tolerance, 0.0, 1.0}},
+  };
+  return table;
+}
+
+}  // namespace skinslide

@@ -1,0 +1,36 @@
+#include "mesh/measures.h"
+
+namespace skinslide {
+
+std::vector<double> bar_lengths(const Positions3& points,
+                                const std::vector<std::array<Index, 2>>& bars) {
+  std::vector<double> lengths(bars.size());
+  for (size_t i = 0; i < bars.size(); ++i)
+    lengths[i] = (points[bars[i][0]] - points[bars[i][1]]).norm();
+  return lengths;
+}
+
+Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles) {
+  std::vector<double> area(triangles.size());
+  int positive = 0, negative = 0;
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Vec2 e1 = net[triangles[t][1]] - net[triangles[t][0]];
+    const Vec2 e2 = net[triangles[t][2]] - net[triangles[t][0]];
+    area[t] = e1.x() * e2.y() - e1.y() * e2.x();
+    positive += area[t] > 0;
+    negative += area[t] < 0;
+  }
+  const double sign = positive >= negative ? 1.0 : -1.0;
+  Folds folds;
+  for (size_t t = 0; t < area.size(); ++t) {
+    folds.flipped += area[t] * sign <= 0;
+    if (area[t] * sign < 0) folds.reversed.push_back(static_cast<Index>(t));
+  }
+  return folds;
+}
+
+int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles) {
+  return count_folds(net, triangles).flipped;
+}
+
+}  // namespace skinslide

@@ -1,0 +1,28 @@
+// Measures both methods take of a patch: its bars' 3D lengths (the bind's, a frame's) and the
+// folds of a 2D picture of it (the paper's nets, the elastic method's chart), which the report
+// counts as flips.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/types.h"
+
+namespace skinslide {
+
+/// 3D length of each bar. `points`: positions indexed by the bars' node ids.
+std::vector<double> bar_lengths(const Positions3& points,
+                                const std::vector<std::array<Index, 2>>& bars);
+
+/// How many triangles of a net do not keep the orientation of the majority.
+struct Folds {
+  int flipped = 0;              ///< zero area or of the minority sign (what reports call flips)
+  std::vector<Index> reversed;  ///< strictly of the minority sign, ascending: the folds that
+                                ///< cover points a second time
+};
+Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles);
+
+/// Triangles of `net` whose signed area is zero or of the minority sign (folds of the net).
+int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles);
+
+}  // namespace skinslide

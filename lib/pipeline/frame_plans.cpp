@@ -1,0 +1,181 @@
+#include "pipeline/frame_plans.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include "core/error.h"
+#include "pipeline/cache_frames.h"
+
+namespace skinslide {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Same file (by identity when it exists, else by normalised path).
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+// Every file a run reads: no output may be one of them.
+std::vector<std::string> run_inputs(const RunOptions& o) {
+  std::vector<std::string> inputs = o.frames;
+  inputs.push_back(o.bind);
+  inputs.insert(inputs.end(), o.patches.begin(), o.patches.end());
+  for (const std::string* f : {&o.weights, &o.pin})
+    if (!f->empty()) inputs.push_back(*f);
+  return inputs;
+}
+
+void refuse_overwrite(const std::string& target, const std::vector<std::string>& inputs) {
+  for (const std::string& in : inputs)
+    if (same_file(target, in))
+      throw Error(ErrorKind::Usage, "output " + target + " would overwrite input " + in +
+                                        "; choose another --output folder");
+}
+
+// A cache output and, for a chunk, the shot's cache its join makes in that folder
+// (`skinslide join`): neither may be an input, or the join would replace the shot it came from.
+void refuse_cache_overwrite(const std::string& cache, const std::string& joined,
+                            const std::vector<std::string>& inputs) {
+  refuse_overwrite(cache, inputs);
+  for (const std::string& in : inputs)
+    if (cache != joined && same_file(joined, in))
+      throw Error(ErrorKind::Usage, "output " + cache + ": its chunks would join into " + joined +
+                                        ", which is input " + in +
+                                        "; choose another --output folder");
+}
+
+// The report must overwrite neither an input nor an output.
+void refuse_report_overwrite(const RunOptions& o, const std::vector<std::string>& inputs,
+                             const std::vector<std::string>& outputs) {
+  if (o.report.empty()) return;
+  for (const std::string& in : inputs)
+    if (same_file(o.report, in))
+      throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);
+  for (const std::string& f : outputs)
+    if (same_file(o.report, f))
+      throw Error(ErrorKind::Usage, "--report " + o.report + " is also the output of a frame");
+}
+
+// Indices of the frames that --frames selects, in list order, by the frame number in each
+// output's file name (an OBJ frame's own name; a rig frame's <character>.<frame>).
+std::vector<size_t> chosen_frames(const std::vector<FrameRange>& ranges,
+                                  const std::vector<std::string>& outputs,
+                                  const std::vector<std::string>& labels, const std::string& spec) {
+  std::vector<size_t> chosen;
+  if (ranges.empty()) {
+    for (size_t i = 0; i < outputs.size(); ++i) chosen.push_back(i);
+    return chosen;
+  }
+  long long lowest = 0, highest = 0;
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const auto n = frame_number(outputs[i]);
+    if (!n)
+      throw Error(ErrorKind::Usage, "--frames: " + labels[i] +
+                                        " has no frame number in its file name (expected e.g. "
+                                        "name.0042.obj); drop --frames or rename the frames");
+    lowest = i == 0 ? *n : std::min(lowest, *n);
+    highest = i == 0 ? *n : std::max(highest, *n);
+    // A range past the frames present selects what there is: a farm's last chunk may run past
+    // the end of the shot.
+    if (in_frame_ranges(ranges, *n)) chosen.push_back(i);
+  }
+  if (chosen.empty())
+    throw Error(ErrorKind::Usage, "--frames " + spec + " selects none of the " +
+                                      std::to_string(outputs.size()) + " frames (numbered " +
+                                      std::to_string(lowest) + " to " + std::to_string(highest) +
+                                      ")");
+  return chosen;
+}
+
+}  // namespace
+
+std::vector<FrameRange> frame_ranges(const RunOptions& o) {
+  return o.frame_ranges.empty() ? std::vector<FrameRange>{} : parse_frame_ranges(o.frame_ranges);
+}
+
+FramePlan plan_frames(const RunOptions& o) {
+  const std::vector<FrameRange> ranges = frame_ranges(o);
+  const std::vector<std::string> inputs = run_inputs(o);
+  FramePlan plan;
+  std::set<std::string> names;
+  for (const std::string& f : o.frames) {
+    const std::string name = fs::path(f).filename().string();
+    if (!names.insert(name).second)
+      throw Error(ErrorKind::Usage, "two frames are named '" + name + "'; their outputs in " +
+                                        o.output + " would collide");
+    const std::string target = (fs::path(o.output) / name).string();
+    refuse_overwrite(target, inputs);
+    plan.outputs.push_back(target);
+  }
+  refuse_report_overwrite(o, inputs, plan.outputs);
+  plan.chosen = chosen_frames(ranges, plan.outputs, o.frames, o.frame_ranges);
+  return plan;
+}
+
+FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& names) {
+  const std::vector<FrameRange> ranges = frame_ranges(o);
+  std::vector<std::string> inputs = o.patches;
+  inputs.push_back(o.bind);
+  const std::string format = o.format.empty() ? "glb" : o.format;
+  FramePlan plan;
+  for (const std::string& name : names) {
+    const std::string target = (fs::path(o.output) / (name + "." + format)).string();
+    refuse_overwrite(target, inputs);
+    plan.outputs.push_back(target);
+  }
+  plan.chosen = chosen_frames(ranges, plan.outputs, names, o.frame_ranges);
+  if (is_cache_format(format)) {
+    // The clip's frames as samples of one cache: frame numbers are the sample indices.
+    CacheHeader whole;
+    whole.format = format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd;
+    whole.samples = static_cast<std::int32_t>(names.size());
+    const std::string stem = fs::path(o.bind).stem().string();
+    plan.cache = cache_output_path(o.output, stem, "." + format, whole, plan.chosen);
+    refuse_cache_overwrite(plan.cache, (fs::path(o.output) / (stem + "." + format)).string(),
+                           inputs);
+    plan.outputs.assign(names.size(), plan.cache);
+  }
+  return plan;
+}
+
+FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
+                            const std::vector<std::string>& names) {
+  const std::vector<std::string> inputs = run_inputs(o);
+  const std::string own = to_string(cache.format);
+  const std::string format = o.format.empty() ? own : o.format;
+  FramePlan plan;
+  plan.chosen = chosen_samples(cache, o.frame_ranges);
+  if (is_cache_format(format)) {
+    if (format != own)
+      throw Error(ErrorKind::Usage, "--format " + format + ": " + o.frames.front() + " is a " +
+                                        own +
+                                        " cache; a cache is written in its own format "
+                                        "(PC2 frames and MDD times do not convert without a "
+                                        "frame rate)");
+    const fs::path input(o.frames.front());
+    plan.cache = cache_output_path(o.output, input.stem().string(), input.extension().string(),
+                                   cache, plan.chosen);
+    refuse_cache_overwrite(plan.cache, (fs::path(o.output) / input.filename()).string(), inputs);
+    plan.outputs.assign(names.size(), plan.cache);
+  } else {
+    plan.outputs.resize(names.size());
+    std::set<std::string> taken;
+    for (std::size_t k : plan.chosen) {
+      if (!taken.insert(names[k]).second)
+        throw Error(ErrorKind::Usage, "--format " + format + ": two samples of " +
+                                          o.frames.front() + " fall in frame " + names[k] +
+                                          " (samples below a frame): one file a frame cannot "
+                                          "hold them; write the cache instead");
+      plan.outputs[k] = (fs::path(o.output) / (names[k] + "." + format)).string();
+      refuse_overwrite(plan.outputs[k], inputs);
+    }
+  }
+  refuse_report_overwrite(o, inputs, plan.outputs);
+  return plan;
+}
+
+}  // namespace skinslide

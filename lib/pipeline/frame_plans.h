@@ -1,0 +1,55 @@
+// Where every frame of a run goes, planned before any frame is read (README "Usage", "Farm"): a
+// run of FRAME files, of a rigged character's clip, of a point cache's samples; the frames
+// --frames selects; the refusals that keep a run from writing over what it reads.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "io/point_cache.h"
+#include "pipeline/frame_ranges.h"
+#include "pipeline/run_options.h"
+
+namespace skinslide {
+
+/// The frames a run slides and where each goes; made before any frame is read.
+struct FramePlan {
+  std::vector<std::string> outputs;  ///< per frame in list order, OUTPUT/<frame's file name>
+  std::vector<std::size_t> chosen;   ///< the frames --frames selects: indices, ascending
+  /// The point cache every chosen frame goes to (each frame's output names it too); empty when
+  /// each frame has a file of its own.
+  std::string cache;
+};
+
+/// The plan of a run of FRAME files: OUTPUT/<file name> per frame, and the frames whose file
+/// names carry a number --frames names (`arm.0042.obj` -> 42; pipeline/frame_ranges.h). Reads
+/// no mesh; looks at the file system only to tell whether two paths are one file.
+/// \throw Error(Usage) for: a malformed --frames; two frames with one file name; an output that
+///        is an input (BIND, FRAME, --patch, --weights, --pin); a --report that is an input or a
+///        frame's output; with --frames, a frame without a number or a selection of none.
+FramePlan plan_frames(const RunOptions& options);
+
+/// The plan of a --animation run: OUTPUT/<name>.<format> for each of `names`
+/// (RigClip::names, "<character stem>.<frame>"), and those --frames selects by frame number;
+/// with a cache format, one cache of the chosen frames (OUTPUT/<character stem>.pc2, or a chunk
+/// named by its first and last frame: cache_frames.h cache_output_path).
+/// \throw Error(Usage) for: a malformed --frames; an output that is BIND or a --patch file; a
+///        --frames selecting none, or, for a cache, frames with gaps between them.
+FramePlan plan_rig_frames(const RunOptions& options, const std::vector<std::string>& names);
+
+/// The plan of a run whose FRAME is a point cache (`cache`, whose samples have the frame names
+/// `names`: cache_frames.h): the samples --frames selects by frame number, and either the cache
+/// they are written to (the FRAME's format: OUTPUT/<cache's file name>, or a chunk named by its
+/// first and last frame) or, with --format obj or glb, OUTPUT/<name>.<format> a sample.
+/// \throw Error(Usage) for: a malformed --frames or one selecting none; a cache chunk with gaps;
+///        --format naming the other cache format; per-frame files for two samples of one frame;
+///        an output or --report that is an input, or a chunk in the input's folder (the join
+///        of the chunks would replace the input); a --report that is an output.
+FramePlan plan_cache_frames(const RunOptions& options, const CacheHeader& cache,
+                            const std::vector<std::string>& names);
+
+/// The run's --frames, parsed; empty = every frame. \throw Error(Usage) when malformed.
+std::vector<FrameRange> frame_ranges(const RunOptions& options);
+
+}  // namespace skinslide

@@ -1,0 +1,73 @@
+#include "pipeline/log_lines.h"
+
+#include <algorithm>
+
+#include "core/number_format.h"
+
+namespace skinslide {
+
+std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& result,
+                                 const std::string& frame_path, const std::string& out_path) {
+  double max_slide = 0;
+  for (const PatchFrameReport& p : result.patches) max_slide = std::max(max_slide, p.max_slide);
+  const auto report = [&](size_t p) -> const MethodReport& { return result.patches[p].method; };
+  std::vector<LogLine> lines;
+  lines.push_back({LogLevel::Info, "skinslide: " + frame_path + ": " +
+                                       std::to_string(setup.patches.size()) + " patches, " +
+                                       frame_summary(setup.method, setup.patches, report,
+                                                     ", max slide " + log_number(max_slide)) +
+                                       " -> " + out_path});
+  for (size_t p = 0; p < result.patches.size(); ++p) {
+    const PatchFrameReport& r = result.patches[p];
+    const std::string line = setup.patches[p].skipped
+                                 ? "skipped (all vertices on loops)"
+                                 : patch_summary(setup.method, p, r.method) + ", slide max " +
+                                       log_number(r.max_slide) + " mean " +
+                                       log_number(r.mean_slide);
+    lines.push_back({LogLevel::Detail, "  patch " + std::to_string(p) + ": " + line});
+  }
+  return lines;
+}
+
+std::vector<LogLine> bind_lines(const RunOptions& o, const BindSetup& setup,
+                                const SlideControls& controls) {
+  std::vector<LogLine> lines;
+  size_t sliding = 0;
+  for (const Patch& p : setup.patches) sliding += p.free_vertices.size();
+  if (o.no_slide)
+    lines.push_back({LogLevel::Info, "skinslide: " + o.bind +
+                                         ": --no-slide: frames are read, checked and written "
+                                         "unchanged"});
+  else
+    lines.push_back({LogLevel::Info, "skinslide: " + o.bind + ": " +
+                                         std::to_string(setup.patches.size()) + " patches, " +
+                                         std::to_string(sliding) + " sliding vertices (" +
+                                         method_label(setup.method) + ")"});
+  const auto v = [&](const Patch& n, Index local) { return std::to_string(n.vertices[local]); };
+  for (size_t p = 0; p < setup.patches.size(); ++p) {
+    const Patch& n = setup.patches[p];
+    lines.push_back({LogLevel::Detail, "  patch " + std::to_string(p) + ": " +
+                                           std::to_string(n.faces.size()) + " faces, " +
+                                           std::to_string(n.vertices.size()) + " vertices, " +
+                                           std::to_string(n.loops.size()) + " loops, " +
+                                           std::to_string(n.free_vertices.size()) + " free" +
+                                           (n.skipped ? " (skipped)" : "") + ", bind net flips " +
+                                           std::to_string(n.bind_net_flips)});
+    if (n.skipped) continue;
+    std::string loop = "    outer loop from vertex " + v(n, n.loops[n.outer_loop].front()) +
+                       (n.outer_loop_chosen ? " (chosen)" : "");
+    if (const auto c = square_corners(setup.method, p, n))  // the elastic chart is a disk: none
+      loop += ", corners " + std::to_string(c->vertices[0]) + "," + std::to_string(c->vertices[1]) +
+              "," + std::to_string(c->vertices[2]) + "," + std::to_string(c->vertices[3]) +
+              (c->chosen ? " (chosen)" : "");
+    lines.push_back({LogLevel::Detail, loop + ", " + std::to_string(n.pinned.size()) + " pinned"});
+  }
+  if (!controls.pins.empty())
+    lines.push_back({LogLevel::Detail, "  " + std::to_string(controls.pins.size()) + " pins, " +
+                                           std::to_string(setup.pins_ignored) +
+                                           " of them on a boundary loop or outside every patch "
+                                           "(ignored)"});
+  return lines;
+}
+
+}  // namespace skinslide

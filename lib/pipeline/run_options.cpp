@@ -1,0 +1,34 @@
+#include "pipeline/run_options.h"
+
+namespace skinslide {
+namespace {
+
+WordOption<RunOptions> method_words() {
+  WordOption<RunOptions> option;
+  for_each_method([&](const std::string& name, const auto&) { option.words.push_back(name); });
+  option.get = [](const RunOptions& o) { return method_name(o.slide); };
+  option.set = [](RunOptions& o, const std::string& name) { o.slide = parse_method(name); };
+  return option;
+}
+
+}  // namespace
+
+template <>
+const OptionTable<RunOptions>& option_table<RunOptions>() {
+  using O = RunOptions;
+  static const OptionTable<O> table = {
+      {"strength", "Multiplies every slide weight; the product is clamped to [0,1]",
+       NumberOption<O, double>{&O::strength, 0.0, 1e6}},
+      {"method",
+       "elastic: the free vertices relax in a fixed chart of each patch towards the bind's edge "
+       "lengths, with fold-free, energy-decreasing steps; paper: Yang & Zhang's bar nets (the "
+       "options below --tolerance)",
+       method_words()},
+  };
+  return table;
+}
+
+const Option<RunOptions>& strength_option() { return option_table<RunOptions>()[0]; }
+const Option<RunOptions>& method_option() { return option_table<RunOptions>()[1]; }
+
+}  // namespace skinslide

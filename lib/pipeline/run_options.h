@@ -1,0 +1,69 @@
+// What a run reads, writes and how it slides (README "Options"): the command line's options as
+// plain data, which cli/ fills and run() (pipeline/run.h) reads; and the table (core/option.h) of
+// the run's options both methods share, which the command line, the Python module and the
+// Blender add-on read.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/option.h"
+#include "core/types.h"
+#include "locate/id_raster.h"
+#include "pipeline/dumps.h"
+#include "pipeline/options.h"
+#include "pipeline/rig_frames.h"
+
+namespace skinslide {
+
+/// What a run reads, writes and how it slides: the command line's options (README "Options") as
+/// plain data, after the command line's own checks (conflicting options, ranges). Paths as given.
+struct RunOptions {
+  // Inputs
+  std::string bind;                  ///< BIND: .obj, .gltf or .glb
+  std::vector<std::string> patches;  ///< --patch files, in order; each file's patches separate
+  std::vector<std::string> frames;   ///< FRAME files, in order; empty with `rig`
+  std::string mesh;                  ///< --mesh (name, else index); empty = the only one
+  /// --animation (and --fps): BIND is a rigged glTF character, the frames its clip's samples.
+  std::optional<RigOptions> rig;
+  /// --format of the slid frames: "obj" or "glb" (a file a frame), "pc2" or "mdd" (one point
+  /// cache); empty = "glb" for `rig`, the cache's own format for a cache FRAME (cache_frames.h).
+  std::string format;
+  // Outputs
+  std::string output = "slid";      ///< folder of the slid frames, created if missing
+  std::string dump_dir;             ///< --dump: EXR images of the nets; empty = none
+  std::string preview_dir;          ///< --preview: PNG pictures of the nets; empty = none
+  int preview_size = kPreviewSize;  ///< side of the preview PNGs, pixels
+  int lookup_size = kLookupSize;    ///< side of the dumps' ID images, pixels (--lookup-size)
+  std::string report;               ///< --report JSON file; empty = none
+  bool report_timings = true;       ///< false: --report-no-timings
+  // Method
+  SlideOptions slide;  ///< the method and its options
+  // Controls (README "Controls"), read after the bind: their ids are checked against it.
+  std::string weights;                      ///< --weights file; empty = none
+  std::string weights_from_obj_color;       ///< "r", "g" or "b" of the OBJ bind; empty = none
+  std::string weights_from_gltf_attribute;  ///< a vertex attribute of the glTF bind; empty = none
+  double strength = SlideControls{}.strength;  ///< multiplies every weight
+  std::string pin;                             ///< --pin file; empty = none
+  std::vector<std::string> corners;            ///< --corners as given, each "a,b,c,d"
+  std::vector<Index> outer_loop_vertices;      ///< --outer-loop-vertex, one per patch
+  // Run
+  unsigned threads = 0;      ///< frames (and patches) processed at once; 0 = usable_cores()
+  std::string frame_ranges;  ///< --frames (pipeline/frame_ranges.h); empty = every frame
+  bool keep_going = false;   ///< write every good frame and name every bad one
+  bool no_slide = false;     ///< read, check and write every frame unchanged (not with `rig`)
+};
+
+/// The run's options both methods share and every client takes (the command line, the Python
+/// module's Slider, the add-on): --strength, then --method.
+template <>
+const OptionTable<RunOptions>& option_table<RunOptions>();
+
+/// --strength: RunOptions::strength.
+const Option<RunOptions>& strength_option();
+
+/// --method: which method slides, by its name (RunOptions::slide's alternative, with defaults).
+const Option<RunOptions>& method_option();
+
+}  // namespace skinslide
