@@ -18,7 +18,9 @@ from meshio import FormatError, Glb, Obj, read_exr, read_mdd, read_pc2, read_png
     write_mdd, write_pc2
 from topology import Refusal, patch_components
 
-ELASTIC_STOPS = {"converged", "limit", "at rest", "no descent", "solve failed", "skipped"}
+# Elastic's per-patch `stop` says why a patch's last round ended. The names grow with the method
+# (lib/elastic/README.md), so any short lowercase name is taken; "converged" is one of them.
+STOP_NAME = re.compile(r"[a-z][a-z0-9 _-]{0,39}\Z")
 ON_SURFACE = 1e-9  # of the frame's bounding-box diagonal (STYLE 5)
 F32 = 2.0 ** -24   # float32 rounding, relative
 
@@ -263,7 +265,20 @@ def build(seed, meshes, ctx):
     case.keep_going = rng.random() < 0.3
     case.verbosity = rng.choice(["-q", "", "-v"])
     case.config = rng.random() < 0.1
+    # --require-converged (elastic): a patch that did not converge fails its frame with exit 5.
+    # Only where this build has it (ctx.options: its --help), and from a stream of its own, so
+    # the rest of each case is the same with or without the option.
+    case.require_converged = (case.method == "elastic" and not case.no_slide and
+                              "--require-converged" in ctx.options and
+                              random.Random(seed ^ 0xC0417).random() < 0.25)
     return case
+
+
+def stop_problem(stop):
+    """None for a stop name the report may give, else what is wrong with it."""
+    if not isinstance(stop, str) or not STOP_NAME.match(stop):
+        return f"stop {stop!r} (a short lowercase name expected)"
+    return None
 
 
 def _obj_colours(mesh):
@@ -345,6 +360,8 @@ def write(case, folder):
     if case.method != "elastic" or random.Random(case.seed).random() < 0.3:
         args += ["--method", case.method]
     args += case.options
+    if case.require_converged:
+        args.append("--require-converged")
     if case.config:
         # some options from a TOML file instead (README "Controls": --config); the command line
         # keeps the rest
@@ -558,7 +575,30 @@ def expected_codes(case):
         return {0, 5}, "elastic on a degenerate bind (a chart that cannot be built)"
     if any(getattr(f, "weld_changed", False) for f in _selected_frames(case)):
         return {3}, "a glTF frame whose float32 positions weld differently from the bind"
+    if getattr(case, "require_converged", False):
+        return {0, 5}, "--require-converged: a patch that did not converge fails its frame"
     return {0}, "a valid selection on good geometry"
+
+
+def unconverged_problems(case, stderr):
+    """--require-converged's exit 5: each error line names the frame and the patch."""
+    if not getattr(case, "require_converged", False):
+        return []
+    lines = [ln for ln in stderr.splitlines() if "skinslide: error: " in ln]
+    if not lines:
+        return []  # process_failures says so
+    names = [f.name for f in _selected_frames(case)] if case.mode == "files" else []
+    bad = [ln for ln in lines if not re.search(r"\bpatch(es)? \d", ln) or
+           (names and not any(n in ln for n in names))]
+    if bad:
+        return [f"exit 5 under --require-converged without the frame and the patch: {bad[0]!r}"]
+    # a patch that moves nothing (no free vertex, all pinned or of weight 0) has nothing to
+    # converge
+    still = [int(m) for ln in lines for m in re.findall(r"\bpatch (\d+)", ln)
+             if int(m) < len(case.comps) and not _expected_patch_moves(case, int(m))[1]]
+    if still:
+        return [f"exit 5 under --require-converged for patch {still[0]}, which moves no vertex"]
+    return []
 
 
 def _temporaries(folder):
@@ -586,8 +626,10 @@ def check(case, folder, r, ref=None):
             if written:
                 failures.append(f"a refused run wrote {[str(p.relative_to(folder)) for p in written][:5]}")
         elif r.code > 0:
+            if r.code == 5 and why.startswith("--require-converged"):
+                failures += unconverged_problems(case, r.stderr)
             try:
-                failures += _check_partial(case, folder)
+                failures += _check_partial(case, folder, r.stderr)
             except FormatError as e:
                 failures.append(f"an output of a failed run does not parse: {e}")
         return failures
@@ -632,17 +674,22 @@ def _tail(text, n=600):
     return text if len(text) <= n else "..." + text[-n:]
 
 
-def _check_partial(case, folder):
+def _check_partial(case, folder, stderr=""):
     """A failed frame leaves no file; with --keep-going every good frame is written."""
     out = []
     if case.mode != "files":
         return out
+    errors = [ln for ln in stderr.splitlines() if "skinslide: error: " in ln]
     for f in case.frames:
         path = folder / "out" / f.name
         if f.bad and path.exists():
             out.append(f"the broken frame {f.name} has an output")
-        if case.keep_going and not f.bad and not f.degenerate and not path.exists() and \
-                not case.frames_spec:
+        unconverged = getattr(case, "require_converged", False) and \
+            any(f.name in ln for ln in errors)
+        if unconverged and path.exists():
+            out.append(f"{f.name} failed --require-converged and has an output")
+        if case.keep_going and not f.bad and not f.degenerate and not unconverged and \
+                not path.exists() and not case.frames_spec:
             out.append(f"--keep-going: the good frame {f.name} has no output")
     # what was written is complete and slid as promised
     pairs, problems = _pairs(case, folder, None, partial=True)
@@ -1058,8 +1105,8 @@ def _check_report(case, folder, pairs):
             frame_max = max(frame_max, fp.get("max_slide", 0))
             if case.method == "elastic":
                 want_moved = len(moving) if free else 0
-                if fp.get("stop") not in ELASTIC_STOPS:
-                    problems.append(f"report: frame {k} patch {ci} stop {fp.get('stop')!r}")
+                if stop_problem(fp.get("stop")):
+                    problems.append(f"report: frame {k} patch {ci} {stop_problem(fp.get('stop'))}")
                 fits, steps = _elastic_limits(case)
                 if fp.get("iterations", 0) > fits * steps:
                     problems.append(f"report: frame {k} patch {ci} took {fp.get('iterations')} "
@@ -1185,7 +1232,8 @@ def reference_args(case):
 
 def describe(case):
     lines = [f"seed {case.seed}: " + "; ".join(case.notes)]
-    lines.append(f"method {case.method}, mode {case.mode}, options {case.options}, pins "
+    lines.append(f"method {case.method}, mode {case.mode}, options {case.options}"
+                 f"{' --require-converged' if getattr(case, 'require_converged', False) else ''}, pins "
                  f"{None if case.pins is None else len(case.pins)}, weights "
                  f"{'file' if case.weight_file else case.colour_channel}, strength {case.strength}")
     if case.frames_spec:

@@ -12,6 +12,7 @@ import argparse
 import os
 import pathlib
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -30,7 +31,8 @@ ROOT = HERE.parents[1]
 
 
 class Context:
-    """What every case shares: the binary, a cache of posed glTF frames, the build kind."""
+    """What every case shares: the binary and the options its --help lists, a cache of posed
+    glTF frames, the build kind."""
 
     def __init__(self, args, work):
         self.binary = os.path.abspath(args.skinslide)
@@ -39,6 +41,9 @@ class Context:
         self.work = pathlib.Path(work)
         self.timeout = args.case_timeout
         self._posed = {}
+        shown = subprocess.run([self.binary, "--help"], capture_output=True, text=True,
+                               timeout=60)
+        self.options = set(re.findall(r"--[a-z][a-z0-9-]*", shown.stdout))
 
     def posed(self, mesh, rng):
         """A frame of the character's first clip, posed by skinslide unslid (--strength 0)."""
