@@ -32,18 +32,30 @@ ROOT = HERE.parents[1]
 
 class Context:
     """What every case shares: the binary and the options its --help lists, a cache of posed
-    glTF frames, the build kind."""
+    glTF frames, the build kind, the running case's time limit."""
 
     def __init__(self, args, work):
         self.binary = os.path.abspath(args.skinslide)
         self.python_dir = os.path.abspath(args.python) if args.python else None
         self.sanitized = args.sanitized
         self.work = pathlib.Path(work)
-        self.timeout = args.case_timeout
+        self.case_limit = args.case_timeout
+        self._case_end = None
         self._posed = {}
         shown = subprocess.run([self.binary, "--help"], capture_output=True, text=True,
                                timeout=60)
         self.options = set(re.findall(r"--[a-z][a-z0-9-]*", shown.stdout))
+
+    def start_case(self):
+        self._case_end = time.monotonic() + self.case_limit
+
+    @property
+    def timeout(self):
+        """Seconds left for the running case's next run: the limit is the whole case's (every
+        run of it), so the test ends within its budget plus one case's limit."""
+        if self._case_end is None:
+            return self.case_limit
+        return max(1.0, self._case_end - time.monotonic())
 
     def posed(self, mesh, rng):
         """A frame of the character's first clip, posed by skinslide unslid (--strength 0)."""
@@ -165,7 +177,9 @@ def main():
                    help="run only this case seed (repeatable): reproduces a printed failure")
     p.add_argument("--python-share", type=float, default=0.3,
                    help="share of cases run through the Python module")
-    p.add_argument("--case-timeout", type=float, default=None)
+    p.add_argument("--case-timeout", type=float, default=None,
+                   help="seconds a case may take, all its runs together (default 180; "
+                        "sanitized 600)")
     p.add_argument("--sanitized", action="store_true",
                    default=os.environ.get("SKINSLIDE_PROPERTY_SANITIZED", "") not in ("", "0"),
                    help="a sanitizer build: smaller cases, longer time limits")
@@ -208,6 +222,7 @@ def main():
     counts = {"cli": 0, "python": 0}
     codes = {}
     failed = []
+    slowest = (0.0, None)
     i = 0
     while True:
         if seeds is not None:
@@ -225,6 +240,8 @@ def main():
         folder = work / f"{kind}-{seed}"
         shutil.rmtree(folder, ignore_errors=True)
         folder.mkdir(parents=True)
+        ctx.start_case()
+        started = time.monotonic()
         try:
             if kind == "cli":
                 case, argv, r, failures = run_cli_case(seed, meshes, ctx, folder)
@@ -235,6 +252,8 @@ def main():
             case, code = None, "driver error"
             failures = ["the test driver failed:\n" + traceback.format_exc()]
         counts[kind] += 1
+        if time.monotonic() - started > slowest[0]:
+            slowest = (time.monotonic() - started, seed)
         codes[code] = codes.get(code, 0) + 1
         if failures:
             dest = keep_case(folder, keep, seed, kind)
@@ -262,7 +281,8 @@ def main():
             shutil.rmtree(folder, ignore_errors=True)
     elapsed = time.monotonic() - t0
     print(f"\n{counts['cli']} command-line and {counts['python']} Python cases in {elapsed:.0f} s; "
-          f"outcomes {dict(sorted(codes.items(), key=str))}; {len(failed)} failed"
+          f"outcomes {dict(sorted(codes.items(), key=str))}; slowest case {slowest[0]:.1f} s "
+          f"(seed {slowest[1]}); {len(failed)} failed"
           + (f": seeds {failed}" if failed else ""), flush=True)
     if not failed and not args.work:
         shutil.rmtree(work, ignore_errors=True)
