@@ -54,6 +54,13 @@ void add_inputs(CLI::App& app, CliOptions& o) {
   app.add_option("--mesh", o.run.mesh, "Mesh of a .gltf/.glb holding several (name, else index)")
       ->type_name("NAME|INDEX")
       ->group(gl);
+  app.add_option("--allow-uri-outside", o.run.allow_uri_outside,
+                 "Also read glTF buffers from this folder's tree (repeatable); else a glTF reads "
+                 "only data: URIs and files inside its own folder")
+      ->check(CLI::Validator(CLI::ExistingDirectory).description(""))  // help: "DIR", not "DIR:DIR"
+      ->allow_extra_args(false)
+      ->type_name("DIR")
+      ->group(gl);
   auto* anim = app.add_option("--animation", o.rig.animation,
                               "BIND is an animated glTF character (skin and/or morph targets): "
                               "pose it at each sampled time of this clip (name, else index) and "

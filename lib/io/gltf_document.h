@@ -9,6 +9,7 @@
 
 #include <tiny_gltf.h>
 
+#include "core/file_extension.h"
 #include "core/types.h"
 
 namespace skinslide {
@@ -38,6 +39,12 @@ struct GltfDocument {
   /// The raw corners (global raw ids) of each triangle of the PolyMesh (#triangles).
   std::vector<std::array<Index, 3>> triangle_raw;
   std::vector<int> triangle_primitive;  ///< index into `primitives` of each triangle
+  /// The external files read (the buffers'; never an image), resolved, in read order.
+  std::vector<std::string> files_read;
 };
+
+/// True when `path` ends in .glb (any case): the reader's MeshFile::format, and what the writer
+/// writes (a GLB, else a .gltf with .bin files).
+inline bool has_glb_extension(const std::string& path) { return lower_extension(path) == ".glb"; }
 
 }  // namespace skinslide

@@ -15,9 +15,12 @@ struct GltfDocument;  // io/gltf.h
 
 enum class MeshFormat { Obj, Gltf, Glb };
 
-/// Which mesh of a multi-mesh file to use (glTF `--mesh`); empty = the only one.
+/// How to read a mesh file: which mesh of a multi-mesh glTF (`--mesh`; empty = the only one),
+/// and the trees a glTF's buffers may be read from besides its own folder
+/// (`--allow-uri-outside`, io/gltf_uri.h; empty = its folder only).
 struct MeshReadOptions {
   std::string mesh;
+  std::vector<std::string> allow_uri_outside = {};  // "= {}": `{mesh}` alone does not warn
 };
 
 /// A mesh as read from a file, with what is needed to write an edited copy of that file.

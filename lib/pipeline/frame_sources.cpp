@@ -57,7 +57,7 @@ std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, con
                                const std::string& frame_path, const std::string& out_path,
                                ReportFrame* record) {
   auto t0 = Clock::now();
-  MeshFile frame = read_mesh_file(frame_path, {o.mesh});
+  MeshFile frame = read_mesh_file(frame_path, mesh_read_options(o));
   require_same_topology(bind, frame);
   release_faces(frame);
   const double read_seconds = seconds_since(t0);

@@ -95,7 +95,9 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   if (files && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored.
-  MeshFile bind = o.rig ? read_gltf_file(o.bind, {o.mesh}) : read_mesh_file(o.bind, {o.mesh});
+  const MeshReadOptions read_options = mesh_read_options(o);
+  MeshFile bind =
+      o.rig ? read_gltf_file(o.bind, read_options) : read_mesh_file(o.bind, read_options);
   const FrameSource source = frame_source(o, bind, std::move(files_plan), cache_run);
   const FramePlan& plan = source.plan;
   std::vector<std::vector<Index>> selections;

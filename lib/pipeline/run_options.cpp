@@ -28,6 +28,8 @@ const OptionTable<RunOptions>& option_table<RunOptions>() {
   return table;
 }
 
+MeshReadOptions mesh_read_options(const RunOptions& o) { return {o.mesh, o.allow_uri_outside}; }
+
 const Option<RunOptions>& strength_option() { return option_table<RunOptions>()[0]; }
 const Option<RunOptions>& method_option() { return option_table<RunOptions>()[1]; }
 

@@ -10,6 +10,7 @@
 
 #include "core/option.h"
 #include "core/types.h"
+#include "io/mesh_file.h"
 #include "locate/id_raster.h"
 #include "pipeline/dumps.h"
 #include "pipeline/options.h"
@@ -25,6 +26,8 @@ struct RunOptions {
   std::vector<std::string> patches;  ///< --patch files, in order; each file's patches separate
   std::vector<std::string> frames;   ///< FRAME files, in order; empty with `rig`
   std::string mesh;                  ///< --mesh (name, else index); empty = the only one
+  /// --allow-uri-outside: trees a glTF's buffers may be read from besides its own folder.
+  std::vector<std::string> allow_uri_outside;
   /// --animation (and --fps): BIND is a rigged glTF character, the frames its clip's samples.
   std::optional<RigOptions> rig;
   /// --format of the slid frames: "obj" or "glb" (a file a frame), "pc2" or "mdd" (one point
@@ -54,6 +57,9 @@ struct RunOptions {
   bool keep_going = false;   ///< write every good frame and name every bad one
   bool no_slide = false;     ///< read, check and write every frame unchanged (not with `rig`)
 };
+
+/// How the run reads BIND and every FRAME (--mesh, --allow-uri-outside).
+MeshReadOptions mesh_read_options(const RunOptions& o);
 
 /// The run's options both methods share and every client takes (the command line, the Python
 /// module's Slider, the add-on): --strength, then --method.

@@ -321,11 +321,12 @@ class Slider {
 
 // ---- File formats -----------------------------------------------------------------------------
 
-py::tuple read_mesh(const std::string& path, const std::string& mesh) {
+py::tuple read_mesh(const std::string& path, const std::string& mesh,
+                    const std::vector<std::string>& allow_uri_outside) {
   MeshFile file;
   {
     py::gil_scoped_release released;
-    file = read_mesh_file(path, {mesh});
+    file = read_mesh_file(path, {mesh, allow_uri_outside});
   }
   const PolyMesh& m = file.mesh;
   DoubleArray positions({static_cast<py::ssize_t>(m.vertex_count()), py::ssize_t{3}});
@@ -383,9 +384,12 @@ PYBIND11_MODULE(skinslide, m) {
         "option (the command line's), method (None: either), type ('int', 'float' or 'word'), "
         "default, min and max (numbers), words and choices (words; choices without other "
         "spellings), help.");
-  m.def("read_mesh", &read_mesh, py::arg("path"), py::arg("mesh") = "",
+  m.def("read_mesh", &read_mesh, py::arg("path"), py::arg("mesh") = "", py::kw_only(),
+        py::arg("allow_uri_outside") = std::vector<std::string>{},
         "Reads an .obj, .gltf or .glb mesh: (positions (V, 3), face_vertices, face_sizes), ids "
-        "as skinslide numbers them (glTF: welded vertices, triangles in primitive order).");
+        "as skinslide numbers them (glTF: welded vertices, triangles in primitive order). A "
+        "glTF's buffers are read only from data: URIs and from files inside its own folder or "
+        "inside one of the allow_uri_outside folders (the command line's --allow-uri-outside).");
   m.def(
       "read_patch",
       [](const std::string& path, std::optional<Index> face_count) {

@@ -222,6 +222,30 @@ head -c 300 $G >"$tmp/cut.gltf"
 expect gltf_truncated_json 3 "cut.gltf: not a readable glTF 2.0 file: [json.exception.parse_error.101] parse error at line 1, column 301" --patch $P --animation 0 "$tmp/cut.gltf"
 printf 'glTF\x02\x00\x00\x00\xff\xff\x00\x00JSON' >"$tmp/cut.glb"
 expect gltf_truncated_glb 3 "cut.glb: not a readable glTF 2.0 file" --patch $P --animation 0 "$tmp/cut.glb"
+# Buffer URIs (lib/io/README.md "Which files a glTF reads"): a second buffer, used by nothing, as
+# in the report that found the leak, leading out of the glTF's folder ($tmp) is refused before any
+# byte is read; one with .. that stays inside is read (the error is then the missing skin).
+gltf_uri_variant() {  # gltf_uri_variant NAME URI: quad.gltf with an unused buffer 1 at URI
+  sed -e 's|}\],"bufferViews"|},{"byteLength":6,"uri":"'"$2"'"}],"bufferViews"|' $G >"$tmp/$1"
+}
+uri_rule="a glTF's buffers are read only from data: URIs and from files inside its own folder"
+gltf_uri_variant climb.gltf ../../../../../../../../etc/hostname
+expect gltf_uri_climbs_out 3 "climb.gltf: buffer 1 uri \"../../../../../../../../etc/hostname\": resolves to /etc/hostname, outside the glTF's folder $(cd "$tmp" && pwd -P); $uri_rule" --patch $P --animation 0 "$tmp/climb.gltf"
+ln -s / "$tmp/root_link"
+gltf_uri_variant link.gltf root_link/etc/hostname
+expect gltf_uri_through_symlink 3 "link.gltf: buffer 1 uri \"root_link/etc/hostname\": resolves to /etc/hostname, outside" --patch $P --animation 0 "$tmp/link.gltf"
+gltf_uri_variant pct.gltf %2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/etc/hostname
+expect gltf_uri_percent_encoded 3 "pct.gltf: buffer 1 uri \"%2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/%2e%2e/etc/hostname\": resolves to /etc/hostname" --patch $P --animation 0 "$tmp/pct.gltf"
+gltf_uri_variant abs.gltf /etc/hostname
+expect gltf_uri_absolute 3 "abs.gltf: buffer 1 uri \"/etc/hostname\": an absolute path; $uri_rule" --patch $P --animation 0 "$tmp/abs.gltf"
+gltf_uri_variant scheme.gltf file:///etc/hostname
+expect gltf_uri_file_scheme 3 "scheme.gltf: buffer 1 uri \"file:///etc/hostname\": the scheme file: (no scheme but data: is read)" --patch $P --animation 0 "$tmp/scheme.gltf"
+gltf_uri_variant escape.gltf 'quad.bin%zz'
+expect gltf_uri_bad_percent_escape 3 "escape.gltf: buffer 1 uri \"quad.bin%zz\": malformed percent-encoding" --patch $P --animation 0 "$tmp/escape.gltf"
+printf '123456' >"$tmp/six.bin"
+mkdir -p "$tmp/sub"
+gltf_uri_variant inside.gltf sub/../six.bin
+expect gltf_uri_dotdot_inside_read 3 "inside.gltf: mesh 0: is not skinned" --patch $P --animation 0 "$tmp/inside.gltf"
 
 # --- point caches (PC2, MDD: lib/io/README.md "Point caches") ----------------------------------
 # cache NAME EDIT: grid.0001.obj and grid.0002.obj as a cache of two samples (NAME ending .pc2:

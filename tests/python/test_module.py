@@ -1,6 +1,7 @@
 """The Python module against the command line: the same bits on data/ and on a shared character,
 both methods; parallel frames; errors with their kinds; the file readers."""
 import concurrent.futures
+import json
 import pathlib
 
 import numpy as np
@@ -151,6 +152,30 @@ def test_errors_raise_with_their_kinds(tmp_path):
     bad.write_text("1 2\nthree\n")
     with pytest.raises(skinslide.InputError, match=r"bad.txt:2"):
         skinslide.read_patch(str(bad))
+
+
+def test_a_gltfs_buffers_outside_its_folder_need_allow_uri_outside(tmp_path):
+    # One triangle whose buffer lies in a sibling tree: chars/tri.gltf -> ../shared/tri.bin.
+    (tmp_path / "chars").mkdir()
+    (tmp_path / "shared").mkdir()
+    (tmp_path / "shared" / "tri.bin").write_bytes(
+        np.array([0, 0, 0, 1, 0, 0, 0, 1, 0], dtype="<f4").tobytes())
+    gltf = tmp_path / "chars" / "tri.gltf"
+    gltf.write_text(json.dumps({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "../shared/tri.bin", "byteLength": 36}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}))
+    with pytest.raises(skinslide.InputError, match="outside the glTF's folder"):
+        skinslide.read_mesh(str(gltf))
+    with pytest.raises(skinslide.InputError, match="outside the glTF's folder"):
+        skinslide.read_mesh(str(gltf), allow_uri_outside=[str(tmp_path / "chars")])
+    positions, face_vertices, face_sizes = skinslide.read_mesh(
+        str(gltf), allow_uri_outside=[str(tmp_path / "shared")])
+    assert positions.tolist() == [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+    assert face_vertices.tolist() == [0, 1, 2] and face_sizes.tolist() == [3]
 
 
 def test_option_specs_declare_what_the_slider_takes():
