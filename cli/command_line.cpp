@@ -29,14 +29,16 @@ const char* const kDescription =
     "A point cache (.pc2, .mdd) of the bind's vertices is a whole shot: one FRAME, slid sample by\n"
     "sample into a cache of the same name (a --frames chunk: <shot>.<first>-<last>.pc2); chunks\n"
     "join with\n"
-    "  skinslide join [-o DIR] CHUNK...";
+    "  skinslide join [-o DIR] CHUNK...\n"
+    "Two slid outputs (folders of frames, or caches) compare as meshes, for CI, with\n"
+    "  skinslide compare [--tolerance T] A B";
 
 // Inputs and glTF.
 void add_inputs(CLI::App& app, CliOptions& o) {
   const char* in = "Inputs";
   app.add_option("--patch", o.run.patches,
-                 "Patch file (repeatable; each file's patches are separate)")
-      ->required()
+                 "Patch file (repeatable; each file's patches are separate); required but with "
+                 "--no-slide")
       ->allow_extra_args(false)
       ->type_name("FILE")
       ->group(in);
@@ -50,6 +52,10 @@ void add_inputs(CLI::App& app, CliOptions& o) {
                      "them (.pc2, .mdd); none with --animation")
           ->type_name("FRAME...")
           ->group(in);
+  app.add_flag("--bind-is-frame", o.run.bind_is_frame,
+               "Take a BIND named as a member of the FRAME sequence (frames/arm.0001.obj with "
+               "frames/arm.0002.obj ...), refused otherwise as a forgotten bind")
+      ->group(in);
   const char* gl = "glTF";
   app.add_option("--mesh", o.run.mesh, "Mesh of a .gltf/.glb holding several (name, else index)")
       ->type_name("NAME|INDEX")
@@ -69,10 +75,10 @@ void add_inputs(CLI::App& app, CliOptions& o) {
                    ->excludes(frames)
                    ->group(gl);
   auto* fps = app.add_option("--fps", o.rig.fps,
-                             "Sample the clip every 1/N s from its first key to its last")
+                             "Sample the clip every 1/N s from its first key to its last; with "
+                             "FRAME files and --format mdd, their rate (frame n at n/N s)")
                   ->check(CLI::Range(0.001, 100000.0))
                   ->type_name("N")
-                  ->needs(anim)
                   ->group(gl);
   app.add_flag("--keyframes", o.keyframes, "Sample the clip at its key times (the default)")
       ->needs(anim)
@@ -81,25 +87,29 @@ void add_inputs(CLI::App& app, CliOptions& o) {
   app.add_option("--format", o.run.format,
                  "Format of the slid frames of --animation (default glb; frames "
                  "<character>.<frame>.<format> from 0000) or of a point cache FRAME (default its "
-                 "own): obj or glb, a file a frame; pc2 or mdd, one cache")
+                 "own): obj or glb, a file a frame; pc2 or mdd, one cache. FRAME files: pc2 or "
+                 "mdd writes them as one cache (default: each in its own format)")
       ->check(CLI::IsMember({"obj", "glb", "pc2", "mdd"}))
       ->group(gl);
 }
 
 void add_outputs(CLI::App& app, CliOptions& o) {
   const char* out = "Output";
-  app.add_option("-o,--output", o.run.output, "Folder for the slid frames (same file names)")
+  app.add_option("-o,--output", o.run.output,
+                 "Folder for the slid frames (same file names); a run writing one cache may "
+                 "name it: shot.pc2")
       ->capture_default_str()
       ->type_name("DIR")
       ->group(out);
   app.add_option("--dump", o.run.dump_dir,
-                 "Folder for EXR images of each patch's nets: ID lookup image and geometry image "
-                 "(P, coverage, slide field), for the bind and every frame (off by default)")
+                 "Folder for EXR images of each patch's 2D layout (elastic: its chart; paper: its "
+                 "nets): ID lookup image and geometry image (P, coverage, slide field), for the "
+                 "bind and every frame (off by default)")
       ->type_name("DIR")
       ->group(out);
   app.add_option("--preview", o.run.preview_dir,
-                 "Folder for a PNG per frame and patch: bind net and frame net drawn over each "
-                 "other, slides marked (off by default)")
+                 "Folder for a PNG per frame and patch: the bind's and the frame's 2D layouts "
+                 "drawn over each other, slides marked (off by default)")
       ->type_name("DIR")
       ->group(out);
   app.add_option("--preview-size", o.run.preview_size, "Side of the preview PNGs, pixels")
@@ -167,8 +177,8 @@ void add_run(CLI::App& app, CliOptions& o) {
                "(exit code: the first bad frame's)")
       ->group(run);
   app.add_flag("--no-slide", o.run.no_slide,
-               "Read, check and write every frame unchanged, without sliding: the I/O floor of a "
-               "run, for timing")
+               "Read, check and write every frame unchanged, without sliding (no --patch needed): "
+               "the I/O floor of a run, or a sequence converted into a cache (--format pc2)")
       ->group(run);
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run);
@@ -187,7 +197,8 @@ void add_controls(CLI::App& app, CliOptions& o) {
   auto* weights =
       app.add_option("--weights", o.run.weights,
                      "Slide weights in [0,1]: one a line in vertex order, or 'index weight' pairs "
-                     "(unlisted = 0); output = lerp(frame, slid, weight)")
+                     "(unlisted = 0); a vertex of weight w slides w of its way (elastic: in the "
+                     "chart, staying on the surface; paper: lerp(frame, slid, w) in 3D)")
           ->type_name("FILE")
           ->group(controls);
   app.add_option("--weights-from-obj-color", o.run.weights_from_obj_color,
@@ -211,7 +222,7 @@ void add_controls(CLI::App& app, CliOptions& o) {
       ->group(controls);
   auto* corners =
       app.add_option("--corners", o.run.corners,
-                     "Four vertex ids on a patch's boundary loop, in walking order, for the "
+                     "Paper: four vertex ids on a patch's boundary loop, in walking order, for the "
                      "square's corners (0,0) (1,0) (1,1) (0,1); that loop becomes the outer loop "
                      "(repeatable: one per patch)")
           ->type_name("A,B,C,D")
@@ -219,14 +230,15 @@ void add_controls(CLI::App& app, CliOptions& o) {
           ->group(controls);
   o.method_only.push_back({corners, method_name(PaperOptions{})});  // the elastic chart is a disk
   app.add_option("--outer-loop-vertex", o.run.outer_loop_vertices,
-                 "A vertex id on the boundary loop to put on the square (repeatable: one per "
-                 "patch)")
+                 "A vertex id on the boundary loop to put on the outer border (the elastic "
+                 "chart's circle, the paper's square; repeatable: one per patch)")
       ->type_name("V")
       ->allow_extra_args(false)
       ->check(CLI::Range(0, 2147483647))
       ->group(controls);
   auto* report = app.add_option("--report", o.run.report,
-                                "Write a JSON report: per frame and patch CG, location, slide and "
+                                "Write a JSON report: per frame and patch the method's figures "
+                                "(elastic: energy, steps; paper: CG, location), slide and "
                                 "edge-spread figures, totals and timings")
                      ->type_name("FILE.json")
                      ->group(controls);
@@ -269,6 +281,7 @@ void check_options(const CLI::App& app, CliOptions& o) {
       throw CLI::ValidationError(
           option->get_name(), "applies to --method " + only + " only, not to --method " + method);
   const RunOptions& r = o.run;
+  if (r.patches.empty() && !r.no_slide) throw CLI::RequiredError("--patch");
   if (r.no_slide &&
       (o.has_rig || !r.report.empty() || !r.dump_dir.empty() || !r.preview_dir.empty()))
     throw CLI::ValidationError(
@@ -278,9 +291,16 @@ void check_options(const CLI::App& app, CliOptions& o) {
     throw CLI::ValidationError("FRAME...",
                                "give at least one FRAME, or --animation with a rigged glTF BIND");
   const bool cache_frame = r.frames.size() == 1 && cache_format(r.frames.front());
-  if (app.count("--format") > 0 && !o.has_rig && !cache_frame)
+  const bool frame_files = !o.has_rig && !cache_frame;
+  if (app.count("--format") > 0 && frame_files && (r.format == "obj" || r.format == "glb"))
     throw CLI::ValidationError("--format",
-                               "applies to --animation or a point cache FRAME (.pc2, .mdd)");
+                               "obj or glb applies to --animation or a point cache FRAME (.pc2, "
+                               ".mdd); FRAME files are written in their own formats, or as one "
+                               "cache: --format pc2 or mdd");
+  if (app.count("--fps") > 0 && !o.has_rig && !(frame_files && r.format == "mdd"))
+    throw CLI::ValidationError("--fps",
+                               "applies to --animation, or to FRAME files written as one MDD "
+                               "cache (--format mdd)");
   const std::string ext = lower_extension(r.bind);
   const bool gltf_bind = ext == ".gltf" || ext == ".glb";
   if (o.has_rig && !gltf_bind)
@@ -305,7 +325,10 @@ Options with_words(Options options, const std::map<std::string, std::string>& wo
 
 RunOptions run_options(const CliOptions& o) {
   RunOptions r = with_words(o.run, o.words);  // the method named, with its defaults
-  if (o.has_rig) r.rig = o.rig;
+  if (o.has_rig)
+    r.rig = o.rig;
+  else if (r.format == "mdd")
+    r.fps = o.rig.fps;
   r.report_timings = !o.report_no_timings;
   r.lookup_size = o.paper.lookup_size;
   std::visit(

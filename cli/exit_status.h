@@ -1,5 +1,6 @@
 // How a command ends (README "Exit codes"): the one place where an error becomes its message on
-// stderr and its exit code, for `skinslide` (main.cpp) and `skinslide join` (join.cpp).
+// stderr and its exit code, for `skinslide` (main.cpp), `skinslide join` (join.cpp) and
+// `skinslide compare` (compare.cpp).
 #pragma once
 
 #include <functional>

@@ -17,6 +17,7 @@
 #include "core/allocator.h"
 #include "core/error.h"
 #include "core/version.h"
+#include "compare.h"
 #include "exit_status.h"
 #include "join.h"
 #include "skinslide.h"
@@ -71,6 +72,8 @@ int main(int argc, char** argv) {
   skinslide::remove_temporaries_on_termination();
   // `skinslide join ...`: a farm's cache chunks into the shot's cache (cli/join.cpp).
   if (argc > 1 && std::string(argv[1]) == "join") return run_join(argc - 1, argv + 1);
+  // `skinslide compare A B`: two slid outputs compared as meshes, for CI (cli/compare.cpp).
+  if (argc > 1 && std::string(argv[1]) == "compare") return run_compare(argc - 1, argv + 1);
   cli::CliOptions o;
   CLI::App app{cli::description(), "skinslide"};
   app.set_version_flag("--version", std::string("skinslide ") + version());

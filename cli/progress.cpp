@@ -21,8 +21,11 @@ void Progress::done(size_t index, std::vector<std::string> lines) {
     std::fputs("\r\033[K", stderr);
     line_drawn_ = false;
   }
+  // On a terminal the bar stands for the per-frame lines (README "Usage"); -v prints them above.
+  const bool print =
+      verbosity_ == Verbosity::Verbose || (verbosity_ == Verbosity::Normal && !terminal_);
   while (next_to_print_ < count_ && finished_[next_to_print_]) {
-    if (verbosity_ != Verbosity::Quiet)
+    if (print)
       for (const std::string& l : pending_[next_to_print_]) std::fprintf(stderr, "%s\n", l.c_str());
     pending_[next_to_print_].clear();
     ++next_to_print_;

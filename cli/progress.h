@@ -13,7 +13,8 @@ namespace skinslide::cli {
 enum class Verbosity { Quiet, Normal, Verbose };
 
 /// Collects per-frame messages from worker threads and prints them in frame order, so a log
-/// reads the same whatever the thread count. On a terminal it also keeps a `\r` progress line.
+/// reads the same whatever the thread count. On a terminal a `\r` progress bar stands for them
+/// (-v prints them above it).
 class Progress {
  public:
   Progress(size_t frame_count, Verbosity verbosity, bool is_terminal);

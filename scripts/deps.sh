@@ -49,8 +49,9 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 export DEBIAN_FRONTEND=noninteractive
 # One apt-get at a time: tests that install their tools may start together (ctest -j), and a
-# second apt-get would fail on dpkg's lock rather than wait for it.
-exec 9>"${TMPDIR:-/tmp}/skinslide-deps.$(id -u).lock"
+# second apt-get would fail on dpkg's lock rather than wait for it. The lock is this script's own
+# file: no lock file left in /tmp (nor in a test run's TMPDIR).
+exec 9<"${BASH_SOURCE[0]}"
 flock 9
 # The package lists first: a fresh image has none, and stale ones name versions long gone.
 $SUDO apt-get update -qq

@@ -15,14 +15,18 @@ face:  32 x 32 quad grid on a spherical cap squashed in x, with two 6 x 3 quad
        t = 0.25, 0.5, 0.75, 1.  Patch = all faces (one outer loop, two holes).
 
 Writes DIR/<case>/{bind.obj, patch.txt, patch_plain.txt, frames/<case>.NNNN.obj}
-and DIR/README.md.  Python 3 standard library only; no randomness, so every run
+and DIR/README.md; for the README's examples, DIR/elbow also gets the frames as a
+point cache (elbow.pc2), the tube as a rigged glTF (rig.glb, rig_patch.txt), the
+patch in two halves (patch_lower.txt, patch_upper.txt), slide weights and pins.  Python 3 standard library only; no randomness, so every run
 writes the same bytes.  Positions are rounded to kDecimals decimals (as an
 exporter's fixed precision would) and written with repr(float), so the file
 value is the exact value used; bind and frames share their vt, s and f lines.
 """
 
+import json
 import math
 import os
+import struct
 import sys
 
 kDecimals = 9  # position precision in the OBJ files
@@ -248,7 +252,118 @@ def case_elbow(root):
                       parts)
     info = summary("elbow", V, faces, patch, frames)
     info["max_displacement"] = max(norm(sub(p, q)) for p, q in zip(frames[-1], V))
-    return save_case(root, "elbow", V, VT, faces, frames, text, patch, info)
+    save_case(root, "elbow", V, VT, faces, frames, text, patch, info)
+    d = os.path.join(root, "elbow")
+    write_bytes(os.path.join(d, "elbow.pc2"), pc2_bytes(frames, 1.0))
+    write_bytes(os.path.join(d, "rig.glb"),
+                elbow_rig_glb(V, faces, joint, blend, angles, n_around))
+    write_text(os.path.join(d, "rig_patch.txt"),
+               patch_text(["rig.glb's patch: the elbow patch's quads as triangles (two a quad,",
+                           "in face order: quad q is triangles 2q and 2q + 1)"],
+                          ["%d-%d" % (2 * first, 2 * last + 1)]))
+    half = first + len(patch) // 2
+    write_text(os.path.join(d, "patch_lower.txt"),
+               patch_text(["the elbow patch's lower half: a band of its own"],
+                          ["%d-%d" % (first, half - 1)]))
+    write_text(os.path.join(d, "patch_upper.txt"),
+               patch_text(["the elbow patch's upper half: a band of its own"],
+                          ["%d-%d" % (half, last)]))
+    # Slide weights: 1 on the side facing +x, fading to 0 on the side facing -x.
+    write_text(os.path.join(d, "weights.txt"),
+               "# slide weight per vertex, in vertex order\n" +
+               "".join("%r\n" % round(0.5 + 0.5 * p[0], 4) for p in V))
+    # Pins: the two vertices of the middle ring (the joint) on the bend's inside and outside.
+    ring = n_along // 2 * n_around
+    write_text(os.path.join(d, "pins.txt"),
+               "# vertices that do not slide: ring %d (z = 4) at y = 1 and y = -1\n%d %d\n"
+               % (n_along // 2, ring + n_around // 4, ring + 3 * n_around // 4))
+    return info
+
+
+# ----------------------------------------------------------------------------
+# elbow as a point cache and as a rigged glTF (the README's examples)
+# ----------------------------------------------------------------------------
+
+def write_bytes(path, data):
+    with open(path, "wb") as fh:
+        fh.write(data)
+
+
+def pc2_bytes(frames, start_frame):
+    """The frames as a PC2 point cache (lib/io/README.md): frame start_frame + k for sample k,
+    float32 coordinates, as Blender's exporter writes one."""
+    out = [struct.pack("<12siiffi", b"POINTCACHE2\0", 1, len(frames[0]), start_frame, 1.0,
+                       len(frames))]
+    out += [struct.pack("<3f", *p) for f in frames for p in f]
+    return b"".join(out)
+
+
+def elbow_rig_glb(V, faces, joint, blend, angles, n_around):
+    """The elbow tube as a skinned glTF (GLB): joint 0 "upper" at the origin, joint 1 "lower" at
+    the elbow's joint, vertex weights as the frames were made (lower = smoothstep over z in
+    `blend`), and a clip "bend" turning "lower" about x through `angles`, one key a quarter
+    second (LINEAR). Each quad is two triangles (a b c, a c d); no UVs, so no vertex is split."""
+    bin_parts, views, accessors = [], [], []
+
+    def add(data, count, component, kind, target=None, minmax=None):
+        offset = sum(len(b) for b in bin_parts)
+        bin_parts.append(data + b"\0" * (-len(data) % 4))
+        view = {"buffer": 0, "byteOffset": offset, "byteLength": len(data)}
+        if target:
+            view["target"] = target
+        views.append(view)
+        accessor = {"bufferView": len(views) - 1, "componentType": component, "count": count,
+                    "type": kind}
+        if minmax:
+            accessor["min"], accessor["max"] = minmax
+        accessors.append(accessor)
+        return len(accessors) - 1
+
+    f32 = [struct.unpack("<f", struct.pack("<f", x))[0] for p in V for x in p]
+    lo = [min(f32[k::3]) for k in range(3)]
+    hi = [max(f32[k::3]) for k in range(3)]
+    position = add(struct.pack("<%df" % len(f32), *f32), len(V), 5126, "VEC3", 34962, (lo, hi))
+    weights = [smoothstep((p[2] - blend[0]) / (blend[1] - blend[0])) for p in V]
+    joints = add(b"".join(struct.pack("<4B", 0, 1, 0, 0) for _ in V), len(V), 5121, "VEC4", 34962)
+    weight = add(b"".join(struct.pack("<4f", 1.0 - w, w, 0.0, 0.0) for w in weights), len(V),
+                 5126, "VEC4", 34962)
+    triangles = [t for f in faces for t in ((f[0][0], f[1][0], f[2][0]), (f[0][0], f[2][0], f[3][0]))]
+    indices = add(struct.pack("<%dH" % (3 * len(triangles)), *[v for t in triangles for v in t]),
+                  3 * len(triangles), 5123, "SCALAR", 34963)
+    identity = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0]
+    inverse_binds = add(struct.pack("<32f", *(identity + [0, 0, 0, 1.0]),
+                                    *(identity + [-joint[0], -joint[1], -joint[2], 1.0])),
+                        2, 5126, "MAT4")
+    times = [0.25 * k for k in range(len(angles))]
+    key_times = add(struct.pack("<%df" % len(times), *times), len(times), 5126, "SCALAR",
+                    minmax=([times[0]], [times[-1]]))
+    turns = [(math.sin(math.radians(a) / 2), 0.0, 0.0, math.cos(math.radians(a) / 2))
+             for a in angles]
+    rotations = add(b"".join(struct.pack("<4f", *q) for q in turns), len(turns), 5126, "VEC4")
+    binary = b"".join(bin_parts)
+    document = {
+        "asset": {"version": "2.0", "generator": "skinslide scripts/make_samples.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 2]}],
+        "nodes": [{"name": "upper", "children": [1]},
+                  {"name": "lower", "translation": list(joint)},
+                  {"name": "elbow", "mesh": 0, "skin": 0}],
+        "skins": [{"joints": [0, 1], "inverseBindMatrices": inverse_binds}],
+        "meshes": [{"name": "elbow", "primitives": [{
+            "attributes": {"POSITION": position, "JOINTS_0": joints, "WEIGHTS_0": weight},
+            "indices": indices}]}],
+        "animations": [{"name": "bend",
+                        "samplers": [{"input": key_times, "output": rotations}],
+                        "channels": [{"sampler": 0, "target": {"node": 1, "path": "rotation"}}]}],
+        "buffers": [{"byteLength": len(binary)}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    text = json.dumps(document, separators=(",", ":"), sort_keys=True).encode("ascii")
+    text += b" " * (-len(text) % 4)
+    chunks = (struct.pack("<I4s", len(text), b"JSON") + text +
+              struct.pack("<I4s", len(binary), b"BIN\0") + binary)
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
 
 
 # ----------------------------------------------------------------------------
@@ -425,6 +540,22 @@ is %.3f, %.0f%% of the patch's largest extent (%.3f).
 
 The patch is every face: one outer loop and two hole loops.  `patch.txt`
 selects them with one range `0-%d`; `patch_plain.txt` lists them one by one.
+
+## The README's examples
+
+Beside the elbow case, for the top-level README's commands (`tests/cli/
+readme_examples.sh` runs every one of them):
+
+- `elbow.pc2`: frames 1-5 as one PC2 point cache (sample k is frame k + 1,
+  float32), as Blender's exporter writes one.
+- `rig.glb`: the tube as a rigged glTF: joints `upper` (at the origin) and
+  `lower` (at the joint, z = 4), the frames' weights, and a clip `bend` turning
+  `lower` about x through the frames' five angles, a key every 0.25 s (no UVs,
+  so no vertex is split).  `rig_patch.txt`: the patch's quads as its
+  triangles (quad q is triangles 2q and 2q + 1).
+- `patch_lower.txt`, `patch_upper.txt`: the patch cut into two bands.
+- `weights.txt`: a slide weight per vertex, 1 on the side facing +x fading to
+  0 on the side facing -x; `pins.txt`: two vertices of the middle ring.
 
 ## License
 

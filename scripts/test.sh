@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies (if missing), builds skinslide with warnings as errors, and runs the
-# whole test suite (unit tests, end-to-end CLI tests, conformance with the reference).
+# whole test suite (unit tests, end-to-end CLI tests, conformance with the reference). After
+# scripts/demo.sh (same configuration, the command only) the build is incremental.
 # Usage: scripts/test.sh [extra cmake -D options, e.g. -DSKINSLIDE_SANITIZE=address,undefined]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

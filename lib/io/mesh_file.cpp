@@ -20,15 +20,10 @@ void require_same_topology(const MeshFile& bind, const MeshFile& frame) {
                 "has " + std::to_string(b.vertex_count()) + " vertices; the bind (" + bind.path +
                     ") has " + std::to_string(a.vertex_count()) +
                     ": a frame must be the bind mesh deformed");
-  const Index n = std::min(a.face_count(), b.face_count());
-  for (Index f = 0; f < n; ++f) {
-    if (a.face_size(f) == b.face_size(f) &&
-        std::equal(a.face_begin(f), a.face_begin(f) + a.face_size(f), b.face_begin(f)))
-      continue;
+  if (const Index f = first_differing_face(a, b); f >= 0)
     throw Error(ErrorKind::Input, frame.where_face(f) + ": face " + std::to_string(f) +
                                       " differs from the bind's (" + bind.where_face(f) +
                                       "): a frame must have the bind's faces");
-  }
   if (a.face_count() != b.face_count())
     throw_input(frame.path, 0,
                 "has " + std::to_string(b.face_count()) + " faces; the bind (" + bind.path +

@@ -209,6 +209,13 @@ std::string encode_header(const CacheHeader& h) {
   return out;
 }
 
+Positions3 sample_positions(const CacheSample& sample) {
+  Positions3 p(sample.size() / 3);
+  for (std::size_t v = 0; v < p.size(); ++v)
+    p[v] = Vec3(sample[3 * v], sample[3 * v + 1], sample[3 * v + 2]);
+  return p;
+}
+
 std::string encode_sample(const std::string& path, CacheFormat format, std::size_t k,
                           const CacheSample& xyz) {
   const bool big = big_endian(format);

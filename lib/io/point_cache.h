@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/types.h"
 #include "io/atomic_write.h"
 
 namespace skinslide {
@@ -65,6 +66,9 @@ std::string encode_header(const CacheHeader& header);
 ///        finite (a cache never holds one).
 std::string encode_sample(const std::string& path, CacheFormat format, std::size_t k,
                           const CacheSample& xyz);
+
+/// A sample's coordinates as positions (float32 to double: exact).
+Positions3 sample_positions(const CacheSample& sample);
 
 /// The whole frame sample `k` belongs to. PC2: startFrame + k x sampleRate, rounded down, or to
 /// the nearest whole frame when within 1e-4 of it (Blender's FRAME_SNAP_EPS: a rate of 0.01 is

@@ -1,6 +1,7 @@
 // A polygon mesh as plain arrays: what every reader produces and every algorithm consumes.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "core/types.h"
@@ -28,6 +29,17 @@ struct PolyMesh {
 /// True when both meshes have the same faces (same sizes, same vertex ids in the same order).
 inline bool same_faces(const PolyMesh& a, const PolyMesh& b) {
   return a.face_start == b.face_start && a.face_vertices == b.face_vertices;
+}
+
+/// The first face, of those both meshes have, whose size or vertex ids differ; -1 when none does
+/// (the face counts may still differ).
+inline Index first_differing_face(const PolyMesh& a, const PolyMesh& b) {
+  const Index n = std::min(a.face_count(), b.face_count());
+  for (Index f = 0; f < n; ++f)
+    if (a.face_size(f) != b.face_size(f) ||
+        !std::equal(a.face_begin(f), a.face_begin(f) + a.face_size(f), b.face_begin(f)))
+      return f;
+  return -1;
 }
 
 }  // namespace skinslide

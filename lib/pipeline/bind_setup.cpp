@@ -239,6 +239,7 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
       name_face ? name_face : [](Index f) { return "face " + std::to_string(f); };
   BindSetup setup;
   setup.vertex_count = bind.vertex_count();
+  setup.bind_positions = bind.positions;
   const Index nv = setup.vertex_count;
 
   if (!controls.weight.empty() && static_cast<Index>(controls.weight.size()) != nv)

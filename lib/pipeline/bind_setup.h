@@ -20,7 +20,10 @@ struct BindSetup {
   /// Final slide weight per mesh vertex, clamp(weight * strength, 0, 1) (#V); empty = 1 everywhere.
   std::vector<double> weight;
   Index pins_ignored = 0;  ///< distinct pins on a boundary loop or outside every patch
-  MethodSetup method;      ///< the method and its per-patch set-up
+  /// The bind's positions (#V): a patch whose frame positions are these to float32 precision is
+  /// at rest (pipeline/slide_frame.h).
+  Positions3 bind_positions;
+  MethodSetup method;  ///< the method and its per-patch set-up
 };
 
 /// Builds the bind set-up for the selected faces of `bind`.

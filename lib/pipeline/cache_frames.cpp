@@ -122,13 +122,6 @@ CacheHeader rig_cache_header(CacheFormat format, Index points, const std::vector
   return h;
 }
 
-Positions3 sample_positions(const CacheSample& sample) {
-  Positions3 p(sample.size() / 3);
-  for (std::size_t v = 0; v < p.size(); ++v)
-    p[v] = Vec3(sample[3 * v], sample[3 * v + 1], sample[3 * v + 2]);
-  return p;
-}
-
 CacheSample slid_sample(CacheSample frame, const SlidVertices& slid) {
   for (std::size_t k = 0; k < slid.vertex.size(); ++k) {
     const std::size_t v = static_cast<std::size_t>(slid.vertex[k]);

@@ -62,9 +62,6 @@ CacheHeader cache_output_header(const CacheHeader& whole, const std::vector<std:
 /// \throw Error(Usage) when two sample times round to one float32 (an --fps too high).
 CacheHeader rig_cache_header(CacheFormat format, Index points, const std::vector<double>& times);
 
-/// A sample's coordinates as positions (float32 to double: exact).
-Positions3 sample_positions(const CacheSample& sample);
-
 /// The sample to write for a frame whose unslid coordinates are `frame` (3 x #V floats): the
 /// vertices of `slid` at their slid positions, rounded to float32 once; every other vertex's
 /// coordinates copied bit for bit.

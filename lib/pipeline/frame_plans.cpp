@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
+#include "core/file_extension.h"
+#include "core/number_format.h"
 #include "pipeline/cache_frames.h"
 
 namespace skinslide {
@@ -91,16 +94,119 @@ std::vector<size_t> chosen_frames(const std::vector<FrameRange>& ranges,
   return chosen;
 }
 
+// A BIND named like the FRAMEs is most likely the sequence's first frame with the bind left out
+// (`skinslide --patch p.txt frames/*.obj`): the run would slide every other frame against it.
+void refuse_bind_in_sequence(const RunOptions& o) {
+  if (o.bind_is_frame) return;
+  const std::optional<std::string> bind = frame_sequence(o.bind);
+  if (!bind) return;
+  for (const std::string& f : o.frames)
+    if (frame_sequence(f) == bind)
+      throw Error(ErrorKind::Usage,
+                  "BIND " + o.bind + " is named as a frame of the sequence it comes with (" + f +
+                      (o.frames.size() > 1 ? ", ..." : "") +
+                      "): is the bind mesh missing? Give the bind before the frames, or "
+                      "--bind-is-frame if this frame is meant as the bind");
+}
+
+// The name of a sequence's cache: the first frame's stem without its number and the separator
+// before it (`arm.0001.obj` -> `arm`).
+std::string sequence_stem(const std::string& first) {
+  std::string stem = fs::path(first).stem().string();
+  if (const std::optional<std::string> sequence = frame_sequence(first)) {  // `arm.#.obj`
+    stem = fs::path(*sequence).stem().string();
+    stem.erase(stem.find('#'), 1);
+  }
+  while (!stem.empty() && (stem.back() == '.' || stem.back() == '_' || stem.back() == '-'))
+    stem.pop_back();
+  return stem.empty() ? "frames" : stem;
+}
+
+// The header of FRAME files written as one cache, from their frame numbers (README "Point
+// caches"): PC2 holds a start and a step, MDD a time a sample.
+CacheHeader sequence_cache_header(const RunOptions& o) {
+  const std::string& format = o.format;
+  std::vector<long long> numbers;
+  for (const std::string& f : o.frames)
+    if (const auto n = frame_number(f)) numbers.push_back(*n);
+  if (!numbers.empty() && numbers.size() != o.frames.size())
+    throw Error(ErrorKind::Usage, "--format " + format +
+                                      ": some FRAMEs have a frame number in their file names "
+                                      "and some have not; a cache's samples need one or the "
+                                      "other (name them all name.0001.obj ...)");
+  if (numbers.empty())
+    for (std::size_t k = 0; k < o.frames.size(); ++k) numbers.push_back(static_cast<long long>(k));
+  CacheHeader h;
+  h.format = format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd;
+  h.samples = static_cast<std::int32_t>(o.frames.size());
+  if (h.format == CacheFormat::Mdd && !(o.fps > 0))
+    throw Error(ErrorKind::Usage,
+                "--format mdd: an MDD cache holds each sample's time in seconds: give the "
+                "frames' rate with --fps (frame n at n / fps)");
+  const long long step = numbers.size() > 1 ? numbers[1] - numbers[0] : 1;
+  for (std::size_t k = 1; k < numbers.size(); ++k) {
+    const bool pc2_ok = numbers[k] - numbers[k - 1] == step && step > 0;
+    if (h.format == CacheFormat::Pc2 ? !pc2_ok : !(numbers[k] > numbers[k - 1]))
+      throw Error(ErrorKind::Usage,
+                  "--format " + format + ": " + o.frames[k] + " (frame " +
+                      std::to_string(numbers[k]) + ") follows " + o.frames[k - 1] + " (frame " +
+                      std::to_string(numbers[k - 1]) + ")" +
+                      (h.format == CacheFormat::Pc2
+                           ? ": a PC2 cache's frames rise by one step (startFrame, sampleRate); "
+                             "give the frames in order, evenly numbered, or write MDD"
+                           : ": an MDD cache's times rise; give the frames in order"));
+  }
+  if (h.format == CacheFormat::Pc2) {
+    h.start_frame = static_cast<float>(numbers.front());
+    h.sample_rate = static_cast<float>(step);
+    return h;
+  }
+  for (std::size_t k = 0; k < numbers.size(); ++k) {
+    h.times.push_back(static_cast<float>(static_cast<double>(numbers[k]) / o.fps));
+    if (k > 0 && !(h.times[k] > h.times[k - 1]))
+      throw Error(ErrorKind::Usage, "--format mdd: frames " + std::to_string(numbers[k - 1]) +
+                                        " and " + std::to_string(numbers[k]) +
+                                        " have one time in float32 at --fps " +
+                                        format_double(o.fps) + "; give the frames' own rate");
+  }
+  return h;
+}
+
 }  // namespace
+
+CacheTarget cache_target(const std::string& output, const std::string& stem,
+                         const std::string& extension) {
+  const fs::path out(output);
+  if (lower_extension(output) == lower_extension("cache" + extension) && !out.stem().empty()) {
+    const std::string folder = out.parent_path().string();
+    return {folder.empty() ? "." : folder, out.stem().string()};
+  }
+  return {output, stem};
+}
 
 std::vector<FrameRange> frame_ranges(const RunOptions& o) {
   return o.frame_ranges.empty() ? std::vector<FrameRange>{} : parse_frame_ranges(o.frame_ranges);
 }
 
 FramePlan plan_frames(const RunOptions& o) {
+  refuse_bind_in_sequence(o);
   const std::vector<FrameRange> ranges = frame_ranges(o);
   const std::vector<std::string> inputs = run_inputs(o);
   FramePlan plan;
+  plan.folder = o.output;
+  if (is_cache_format(o.format)) {
+    plan.whole = sequence_cache_header(o);
+    plan.chosen = chosen_frames(ranges, o.frames, o.frames, o.frame_ranges);
+    const std::string extension = "." + o.format;
+    const CacheTarget target = cache_target(o.output, sequence_stem(o.frames.front()), extension);
+    plan.folder = target.folder;
+    plan.cache = cache_output_path(target.folder, target.stem, extension, plan.whole, plan.chosen);
+    refuse_cache_overwrite(plan.cache,
+                           (fs::path(target.folder) / (target.stem + extension)).string(), inputs);
+    plan.outputs.assign(o.frames.size(), plan.cache);
+    refuse_report_overwrite(o, inputs, plan.outputs);
+    return plan;
+  }
   std::set<std::string> names;
   for (const std::string& f : o.frames) {
     const std::string name = fs::path(f).filename().string();
@@ -122,6 +228,7 @@ FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& n
   inputs.push_back(o.bind);
   const std::string format = o.format.empty() ? "glb" : o.format;
   FramePlan plan;
+  plan.folder = o.output;
   for (const std::string& name : names) {
     const std::string target = (fs::path(o.output) / (name + "." + format)).string();
     refuse_overwrite(target, inputs);
@@ -133,10 +240,12 @@ FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& n
     CacheHeader whole;
     whole.format = format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd;
     whole.samples = static_cast<std::int32_t>(names.size());
-    const std::string stem = fs::path(o.bind).stem().string();
-    plan.cache = cache_output_path(o.output, stem, "." + format, whole, plan.chosen);
-    refuse_cache_overwrite(plan.cache, (fs::path(o.output) / (stem + "." + format)).string(),
-                           inputs);
+    const std::string extension = "." + format;
+    const CacheTarget target = cache_target(o.output, fs::path(o.bind).stem().string(), extension);
+    plan.folder = target.folder;
+    plan.cache = cache_output_path(target.folder, target.stem, extension, whole, plan.chosen);
+    refuse_cache_overwrite(plan.cache,
+                           (fs::path(target.folder) / (target.stem + extension)).string(), inputs);
     plan.outputs.assign(names.size(), plan.cache);
   }
   return plan;
@@ -148,6 +257,7 @@ FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
   const std::string own = to_string(cache.format);
   const std::string format = o.format.empty() ? own : o.format;
   FramePlan plan;
+  plan.folder = o.output;
   plan.chosen = chosen_samples(cache, o.frame_ranges);
   if (is_cache_format(format)) {
     if (format != own)
@@ -157,9 +267,12 @@ FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
                                         "(PC2 frames and MDD times do not convert without a "
                                         "frame rate)");
     const fs::path input(o.frames.front());
-    plan.cache = cache_output_path(o.output, input.stem().string(), input.extension().string(),
-                                   cache, plan.chosen);
-    refuse_cache_overwrite(plan.cache, (fs::path(o.output) / input.filename()).string(), inputs);
+    const std::string extension = input.extension().string();
+    const CacheTarget target = cache_target(o.output, input.stem().string(), extension);
+    plan.folder = target.folder;
+    plan.cache = cache_output_path(target.folder, target.stem, extension, cache, plan.chosen);
+    refuse_cache_overwrite(plan.cache,
+                           (fs::path(target.folder) / (target.stem + extension)).string(), inputs);
     plan.outputs.assign(names.size(), plan.cache);
   } else {
     plan.outputs.resize(names.size());

@@ -20,14 +20,36 @@ struct FramePlan {
   /// The point cache every chosen frame goes to (each frame's output names it too); empty when
   /// each frame has a file of its own.
   std::string cache;
+  /// FRAME files written as one cache: the whole sequence's header (frame numbers, or MDD
+  /// times, from the files' names: plan_frames).
+  CacheHeader whole;
+  std::string folder;  ///< the folder every output is in, made if missing
 };
 
+/// Where a run writing one point cache puts it: an --output ending in the cache's extension
+/// (`shot.pc2`) is the cache itself, in its folder; any other --output is the folder of
+/// `<stem><extension>`.
+struct CacheTarget {
+  std::string folder;
+  std::string stem;
+};
+CacheTarget cache_target(const std::string& output, const std::string& stem,
+                         const std::string& extension);
+
 /// The plan of a run of FRAME files: OUTPUT/<file name> per frame, and the frames whose file
-/// names carry a number --frames names (`arm.0042.obj` -> 42; pipeline/frame_ranges.h). Reads
-/// no mesh; looks at the file system only to tell whether two paths are one file.
-/// \throw Error(Usage) for: a malformed --frames; two frames with one file name; an output that
-///        is an input (BIND, FRAME, --patch, --weights, --pin); a --report that is an input or a
-///        frame's output; with --frames, a frame without a number or a selection of none.
+/// names carry a number --frames names (`arm.0042.obj` -> 42; pipeline/frame_ranges.h). With
+/// --format pc2 or mdd, one cache of the chosen frames instead (cache_target; the stem is the
+/// frames' name without its number, `arm` for arm.0001.obj): PC2 frames are the files' numbers,
+/// which must rise by one step (startFrame the first, sampleRate the step; files without numbers
+/// count from 0); MDD times are those numbers over --fps. Reads no mesh; looks at the file
+/// system only to tell whether two paths are one file.
+/// \throw Error(Usage) for: a BIND named as a member of the FRAME sequence (frame_sequence: the
+///        bind forgotten, a frame taken for it) unless --bind-is-frame; a malformed --frames; two
+///        frames with one file name; an output that is an input (BIND, FRAME, --patch,
+///        --weights, --pin); a --report that is an input or a frame's output; with --frames, a
+///        frame without a number or a selection of none; for a cache: numbers that do not rise
+///        by one step (PC2) or at all (MDD), some files numbered and some not, MDD without
+///        --fps, times one float32, a chunk with gaps.
 FramePlan plan_frames(const RunOptions& options);
 
 /// The plan of a --animation run: OUTPUT/<name>.<format> for each of `names`

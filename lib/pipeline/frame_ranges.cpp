@@ -4,6 +4,7 @@
 #include <charconv>
 #include <filesystem>
 #include <string_view>
+#include <utility>
 
 #include "core/error.h"
 
@@ -83,13 +84,31 @@ bool in_frame_ranges(const std::vector<FrameRange>& ranges, long long frame) {
   return false;
 }
 
-std::optional<long long> frame_number(const std::string& path) {
-  const std::string stem = std::filesystem::path(path).stem().string();
+namespace {
+
+// Where the frame number's digits are in `stem`: [begin, end); empty when it has none.
+std::pair<size_t, size_t> frame_digits(const std::string& stem) {
   size_t end = stem.size();
   while (end > 0 && !is_digit(stem[end - 1])) --end;
   size_t begin = end;
   while (begin > 0 && is_digit(stem[begin - 1])) --begin;
+  return {begin, end};
+}
+
+}  // namespace
+
+std::optional<long long> frame_number(const std::string& path) {
+  const std::string stem = std::filesystem::path(path).stem().string();
+  const auto [begin, end] = frame_digits(stem);
   return number(std::string_view(stem).substr(begin, end - begin));
+}
+
+std::optional<std::string> frame_sequence(const std::string& path) {
+  if (!frame_number(path)) return std::nullopt;
+  const std::filesystem::path p(path);
+  const std::string stem = p.stem().string();
+  const auto [begin, end] = frame_digits(stem);
+  return stem.substr(0, begin) + "#" + stem.substr(end) + p.extension().string();
 }
 
 }  // namespace skinslide

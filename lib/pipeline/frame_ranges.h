@@ -29,4 +29,8 @@ bool in_frame_ranges(const std::vector<FrameRange>& ranges, long long frame);
 /// it does not fit in a long long.
 std::optional<long long> frame_number(const std::string& path);
 
+/// The sequence a frame file belongs to: its file name with the frame number (frame_number's
+/// digits) as `#` (`shot/arm.0042.obj` -> `arm.#.obj`); nullopt when it has no frame number.
+std::optional<std::string> frame_sequence(const std::string& path);
+
 }  // namespace skinslide

@@ -53,23 +53,33 @@ std::vector<LogLine> finish_frame(const BindSetup& setup, FrameResult& result,
 }
 
 // Reads, checks, slides and writes one frame; returns the log lines for it.
+// A FRAME file's slide written where the plan says: its own slid file, or (--format pc2|mdd)
+// its sample of the output cache, rounded to float32 once.
+void write_file_frame(const MeshFile& frame, const SlidVertices& slid, const std::string& out_path,
+                      CacheSlot slot) {
+  if (slot.writer)
+    return slot.writer->write_sample(slot.sample,
+                                     positions_sample(apply_slide(frame.mesh.positions, slid)));
+  write_slid_mesh_file(frame, slid, out_path);
+}
+
 std::vector<LogLine> run_frame(const BindSetup& setup, const MeshFile& bind, const RunOptions& o,
                                const std::string& frame_path, const std::string& out_path,
-                               ReportFrame* record) {
+                               CacheSlot slot, ReportFrame* record) {
   auto t0 = Clock::now();
   MeshFile frame = read_mesh_file(frame_path, mesh_read_options(o));
   require_same_topology(bind, frame);
   release_faces(frame);
   const double read_seconds = seconds_since(t0);
   if (o.no_slide) {
-    write_slid_mesh_file(frame, SlidVertices{}, out_path);
+    write_file_frame(frame, SlidVertices{}, out_path, slot);
     return {
         {LogLevel::Info, "skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path}};
   }
   FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
   write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
   t0 = Clock::now();
-  write_slid_mesh_file(frame, result.slid, out_path);
+  write_file_frame(frame, result.slid, out_path, slot);
   return finish_frame(setup, result, frame_path, out_path, read_seconds, seconds_since(t0), record);
 }
 
@@ -157,10 +167,16 @@ FrameSource frame_source(const RunOptions& o, const MeshFile& bind, FramePlan fi
 
 CacheHeader output_cache_header(const RunOptions& o, const MeshFile& bind,
                                 const FrameSource& source) {
-  const CacheHeader whole =
-      source.cache.cache ? source.cache.cache->header()
-                         : rig_cache_header(o.format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd,
-                                            bind.mesh.vertex_count(), source.clip.times);
+  CacheHeader whole;
+  if (source.cache.cache) {
+    whole = source.cache.cache->header();
+  } else if (o.rig) {
+    whole = rig_cache_header(o.format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd,
+                             bind.mesh.vertex_count(), source.clip.times);
+  } else {  // FRAME files: the plan's header, of as many points as the bind has vertices
+    whole = source.plan.whole;
+    whole.points = bind.mesh.vertex_count();
+  }
   return cache_output_header(whole, source.plan.chosen);
 }
 
@@ -176,7 +192,7 @@ std::vector<LogLine> run_source_frame(const BindSetup& setup, const MeshFile& bi
   if (o.rig) return run_rig_frame(setup, bind, source.clip, o, i, out, slot, record);
   if (source.cache.cache)
     return run_cache_frame(setup, bind, source.cache, o, i, out, slot, record);
-  return run_frame(setup, bind, o, o.frames[i], out, record);
+  return run_frame(setup, bind, o, o.frames[i], out, slot, record);
 }
 
 }  // namespace skinslide

@@ -37,7 +37,7 @@ FrameSource frame_source(const RunOptions& o, const MeshFile& bind, FramePlan fi
                          bool cache_run);
 
 /// The header of the cache a run writes (FramePlan::cache): the chosen samples of the FRAME
-/// cache, or of the clip.
+/// cache, of the clip, or of the FRAME files (FramePlan::whole).
 CacheHeader output_cache_header(const RunOptions& o, const MeshFile& bind,
                                 const FrameSource& source);
 

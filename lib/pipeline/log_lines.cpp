@@ -5,25 +5,40 @@
 #include "core/number_format.h"
 
 namespace skinslide {
+namespace {
+
+constexpr const char* kAtRest = "at rest (the bind to float32 precision), unchanged";
+
+}  // namespace
 
 std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& result,
                                  const std::string& frame_path, const std::string& out_path) {
   double max_slide = 0;
   for (const PatchFrameReport& p : result.patches) max_slide = std::max(max_slide, p.max_slide);
   const auto report = [&](size_t p) -> const MethodReport& { return result.patches[p].method; };
+  // Figures where there is something to slide: a frame of skipped patches has no energy, and a
+  // frame at rest comes back unchanged whatever is left of its float32 rounding.
+  bool any_free = false, all_at_rest = true;
+  for (size_t p = 0; p < setup.patches.size(); ++p)
+    if (!setup.patches[p].skipped) {
+      any_free = true;
+      all_at_rest = all_at_rest && result.patches[p].at_rest;
+    }
+  const std::string summary = !any_free     ? "no free vertex: nothing slides"
+                              : all_at_rest ? std::string(kAtRest)
+                                            : frame_summary(setup.method, setup.patches, report,
+                                                            ", max slide " + log_number(max_slide));
   std::vector<LogLine> lines;
   lines.push_back({LogLevel::Info, "skinslide: " + frame_path + ": " +
                                        std::to_string(setup.patches.size()) + " patches, " +
-                                       frame_summary(setup.method, setup.patches, report,
-                                                     ", max slide " + log_number(max_slide)) +
-                                       " -> " + out_path});
+                                       summary + " -> " + out_path});
   for (size_t p = 0; p < result.patches.size(); ++p) {
     const PatchFrameReport& r = result.patches[p];
-    const std::string line = setup.patches[p].skipped
-                                 ? "skipped (all vertices on loops)"
-                                 : patch_summary(setup.method, p, r.method) + ", slide max " +
-                                       log_number(r.max_slide) + " mean " +
-                                       log_number(r.mean_slide);
+    const std::string line = setup.patches[p].skipped ? "skipped (all vertices on loops)"
+                             : r.at_rest              ? std::string(kAtRest)
+                                                      : patch_summary(setup.method, p, r.method) +
+                                               ", slide max " + log_number(r.max_slide) + " mean " +
+                                               log_number(r.mean_slide);
     lines.push_back({LogLevel::Detail, "  patch " + std::to_string(p) + ": " + line});
   }
   return lines;

@@ -2,47 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <type_traits>
 #include <variant>
 
 #include "core/version.h"
 #include "io/atomic_write.h"
+#include "core/json_text.h"
 #include "core/number_format.h"
 
 namespace skinslide {
 namespace {
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x",
-                        static_cast<unsigned>(static_cast<unsigned char>(c)));
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
 
 // JSON has no NaN or infinity; a non-finite number (never expected) is written as null.
 std::string number(double x) { return std::isfinite(x) ? format_double(x) : "null"; }
@@ -54,7 +24,7 @@ class Object {
  public:
   explicit Object(int indent) : indent_(indent) {}
   Object& add(const std::string& key, const std::string& json) {
-    members_.push_back(std::string(indent_ + 2, ' ') + quoted(key) + ": " + json);
+    members_.push_back(std::string(indent_ + 2, ' ') + json_string(key) + ": " + json);
     return *this;
   }
   std::string str() const {
@@ -93,7 +63,7 @@ std::string json(const FigureValue& value) {
         else if constexpr (std::is_same_v<Value, bool>)
           return boolean(v);
         else if constexpr (std::is_same_v<Value, std::string>)
-          return quoted(v);
+          return json_string(v);
         else {
           std::vector<std::string> items;
           for (long long x : v) items.push_back(number(x));
@@ -110,9 +80,9 @@ Object& add(Object& object, const Figures& figures) {
 
 std::string controls_json(const BindSetup& setup, const RunReport& run) {
   return Object(2)
-      .add("weights", run.weights.empty() ? "null" : quoted(run.weights))
+      .add("weights", run.weights.empty() ? "null" : json_string(run.weights))
       .add("strength", number(run.strength))
-      .add("pins", run.pins.empty() ? "null" : quoted(run.pins))
+      .add("pins", run.pins.empty() ? "null" : json_string(run.pins))
       .add("pins_requested", number(static_cast<long long>(run.pins_requested)))
       .add("pins_ignored", number(static_cast<long long>(setup.pins_ignored)))
       .str();
@@ -151,8 +121,8 @@ std::string frame_json(const ReportFrame& f, FrameSums& sums) {
   sums.read += f.read_seconds;
   sums.write += f.write_seconds;
   return Object(4)
-      .add("path", quoted(f.path))
-      .add("output", quoted(f.output))
+      .add("path", json_string(f.path))
+      .add("output", json_string(f.output))
       .add("patches", array(patches, 6))
       .str();
 }
@@ -173,10 +143,10 @@ std::string timings_json(const RunReport& run, const FrameSums& sums) {
 
 std::string report_json(const BindSetup& setup, const RunReport& run) {
   Object root(0);
-  root.add("skinslide", quoted(version()));
-  root.add("bind", quoted(run.bind));
+  root.add("skinslide", json_string(version()));
+  root.add("bind", json_string(run.bind));
   std::vector<std::string> files;
-  for (const std::string& f : run.patch_files) files.push_back(quoted(f));
+  for (const std::string& f : run.patch_files) files.push_back(json_string(f));
   root.add("patch_files", inline_array(files));
   Object options(2);
   root.add("options", add(options, option_figures(setup.method)).str());

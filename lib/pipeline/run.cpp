@@ -125,7 +125,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
                        threads);
   report.bind_seconds = seconds_since(t_run);
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
-  make_output_dir(o.output);
+  make_output_dir(plan.folder);
   if (!o.dump_dir.empty())
     write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions,
                      {.id_image_size = o.lookup_size});
@@ -151,7 +151,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   // Each output was flushed before its rename; flushing the folders makes the renames durable.
   // The preview folder is made with the first preview: when every frame failed before one,
   // there is nothing in it to flush, and the frames' errors below are the run's.
-  for (const std::string& folder : {o.output, o.dump_dir, o.preview_dir}) {
+  for (const std::string& folder : {plan.folder, o.dump_dir, o.preview_dir}) {
     std::error_code ec;
     if (!folder.empty() && fs::is_directory(folder, ec)) sync_folder(folder);
   }

@@ -33,8 +33,14 @@ struct RunOptions {
   /// --format of the slid frames: "obj" or "glb" (a file a frame), "pc2" or "mdd" (one point
   /// cache); empty = "glb" for `rig`, the cache's own format for a cache FRAME (cache_frames.h).
   std::string format;
+  /// --bind-is-frame: a BIND named as a member of the FRAME sequence (frame_plans.h) is meant.
+  bool bind_is_frame = false;
+  /// --fps with FRAME files written as one MDD cache: frame n is at n / fps seconds; 0 = none.
+  double fps = 0;
   // Outputs
-  std::string output = "slid";      ///< folder of the slid frames, created if missing
+  /// Folder of the slid frames, created if missing; for a run writing one point cache, a path
+  /// ending in the cache's extension (shot.pc2) names the cache itself (frame_plans.h).
+  std::string output = "slid";
   std::string dump_dir;             ///< --dump: EXR images of the nets; empty = none
   std::string preview_dir;          ///< --preview: PNG pictures of the nets; empty = none
   int preview_size = kPreviewSize;  ///< side of the preview PNGs, pixels

@@ -15,7 +15,11 @@ namespace skinslide {
 
 /// What happened to one patch in one frame.
 struct PatchFrameReport {
-  MethodReport method;    ///< the method's own figures
+  MethodReport method;  ///< the method's own figures
+  /// Every vertex of the patch is at its bind position to float32 precision (a point cache's
+  /// sample of the bind pose): the patch comes back unchanged, as the bind does; `method` keeps
+  /// what the method found, `moved` is 0.
+  bool at_rest = false;
   int moved = 0;          ///< free vertices written (weight > 0)
   double max_slide = 0;   ///< largest |output - frame| (frame units, after weights)
   double mean_slide = 0;  ///< mean over the vertices the method placed
@@ -56,7 +60,7 @@ FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
                         const FrameExtras& extras = {});
 
 /// A patch's figures in a frame, in the report's order: the method's (report_figures), then the
-/// slide's (moved, max_slide, mean_slide, spread_frame, spread_slid).
+/// slide's (at_rest, moved, max_slide, mean_slide, spread_frame, spread_slid).
 Figures frame_figures(const PatchFrameReport& report);
 
 }  // namespace skinslide

@@ -18,6 +18,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "cache_module.h"
 #include "core/version.h"
 #include "core/option.h"
 #include "io/mesh_formats.h"
@@ -353,6 +354,7 @@ PYBIND11_MODULE(skinslide, m) {
   m.doc() = "skin sliding for deformed character meshes (lib/python/README.md)";
   m.attr("__version__") = version();
   add_errors(m);
+  add_cache_functions(m);  // write_cache, read_cache (cache_module.cpp)
   py::class_<Slider>(m, "Slider",
                      "A bind set-up: Slider(bind, faces, patches, *, method='elastic', pins=None, "
                      "weights=None, **options); slide(frame) -> (positions, report).")

@@ -6,7 +6,11 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/bad_inputs/run.sh
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+# shellcheck source=../cli/require.sh
+. "$here/../cli/require.sh"
+require_program SKINSLIDE
+require_tools /usr/bin/python3
+bin=$SKINSLIDE
 tmp=$(mktemp -d)
 mkdir -p "$tmp/out"
 trap 'chmod -R u+rwx "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
@@ -33,6 +37,10 @@ expect() {
   elif [ "$1" = join ]; then  # `skinslide join [-o DIR] CHUNK...`
     shift
     set -- join -o "$out" "$@"
+  elif [ "$1" = compare ]; then  # `skinslide compare A B`: its report is the output
+    shift
+    mkdir -p "$out"
+    set -- compare --report "$out/report.json" "$@"
   else
     set -- -o "$out" "$@"
   fi
@@ -49,7 +57,7 @@ expect() {
     fail "$name: wrote to stdout"
     ok=0
   elif [ "$code" -ne 0 ] && [ -d "$out" ] && ! grep -q -- "--keep-going" <<<"$*" &&
-    [ -n "$(find "$out" -type f)" ]; then
+    ! { [ "$1" = compare ] && [ "$code" -eq 1 ]; } && [ -n "$(find "$out" -type f)" ]; then
     fail "$name: a failed run left files: $(ls -A "$out")"
     ok=0
   elif [ -d "$out" ] && grep -rqiIE '(^|[ /])[-+]?(nan|inf)' "$out"; then
@@ -309,7 +317,21 @@ expect cache_among_frames 2 "a point cache is a whole shot: give it as the only 
 expect cache_frames_none 2 "--frames 5-9 selects none of the cache's 2 samples (frames 1 to 2)" --frames 5-9 --patch $P $B "$tmp/shot.pc2"
 expect cache_format_other_cache 2 "--format mdd: $tmp/shot.pc2 is a pc2 cache" --format mdd --patch $P $B "$tmp/shot.pc2"
 expect cache_format_glb_obj_bind 2 "glb from a point cache needs a .gltf or .glb BIND" --format glb --patch $P $B "$tmp/shot.pc2"
-expect format_without_cache_or_animation 2 "--format: applies to --animation or a point cache FRAME" --format obj --patch $P $B $F
+expect format_without_cache_or_animation 2 "--format: obj or glb applies to --animation or a point cache FRAME" --format obj --patch $P $B $F
+# FRAME files as one cache (--format pc2|mdd): the header the files' numbers make, or none.
+mkdir -p "$tmp/seq"
+for n in 0001 0002 0004; do cp $F "$tmp/seq/s.$n.obj"; done
+cp $F "$tmp/seq/unnumbered.obj"
+cp $F "$tmp/seq/t.1000000000.obj" && cp $F "$tmp/seq/t.1000000001.obj"
+cp "$tmp/cut_lines.0001.obj" "$tmp/seq/grid.0002.obj"
+expect sequence_pc2_uneven 2 "$tmp/seq/s.0004.obj (frame 4) follows $tmp/seq/s.0002.obj (frame 2): a PC2 cache's frames rise by one step" --format pc2 --patch $P $B "$tmp"/seq/s.*.obj
+expect sequence_numbered_and_not 2 "--format pc2: some FRAMEs have a frame number in their file names and some have not" --format pc2 --patch $P $B $F "$tmp/seq/unnumbered.obj"
+expect sequence_mdd_without_fps 2 "--format mdd: an MDD cache holds each sample's time in seconds: give the frames' rate with --fps" --format mdd --patch $P $B $F
+expect sequence_fps_without_mdd 2 "--fps: applies to --animation, or to FRAME files written as one MDD cache" --fps 24 --format pc2 --patch $P $B $F
+expect sequence_mdd_one_time 2 "--format mdd: frames 1000000000 and 1000000001 have one time in float32 at --fps 1" --format mdd --fps 1 --patch $P $B "$tmp"/seq/t.*.obj
+expect sequence_bad_frame_no_cache 3 "grid.0002.obj: has 9 vertices; the bind (grid.obj) has 16" --format pc2 --patch $P $B $F "$tmp/seq/grid.0002.obj"
+# The bind forgotten: the first frame taken for it.
+expect bind_named_as_frame 2 "BIND grid.0001.obj is named as a frame of the sequence it comes with (grid.0002.obj): is the bind mesh missing?" --patch $P grid.0001.obj grid.0002.obj
 # An output that is its input: refused before anything is written, the input untouched.
 mkdir -p "$tmp/cache_in"
 cp "$tmp/shot.pc2" "$tmp/cache_in/"
@@ -333,6 +355,25 @@ cmp -s "$tmp/out/join_valid/shot3.pc2" "$tmp/whole/shot3.pc2" || fail "join_vali
 expect join_a_gap 3 "shot3.0003-0003.pc2: starts at frame 3 but the chunks before it end one sample before frame 2: the samples between are missing" join "$tmp/chunks/shot3.0001-0001.pc2" "$tmp/chunks/shot3.0003-0003.pc2"
 expect join_an_overlap 3 "shot3.0003-0003.pc2: frames 3-3 overlap $tmp/chunks/shot3.0002-0003.pc2's frames 2-3" join "$tmp/chunks/shot3.0002-0003.pc2" "$tmp/chunks/shot3.0003-0003.pc2"
 expect join_not_a_chunk 3 "shot.pc2: not a chunk's name: expected <shot>.<first>-<last>.pc2 or .mdd" join "$tmp/shot.pc2"
+
+# --- `skinslide compare A B`: what it refuses (its report, the output, is then not written) ------
+mkdir -p "$tmp/cmp/a" "$tmp/cmp/b" "$tmp/cmp/fewer" "$tmp/cmp/empty" "$tmp/cmp/face"
+"$bin" -q -o "$tmp/cmp/a" --patch $P $B $F grid.0002.obj
+cp "$tmp/cmp/a/"* "$tmp/cmp/b/"
+cp "$tmp/cmp/a/$F" "$tmp/cmp/fewer/"
+variant cmp/face/$F '20s/.*/f 4 8 7 3/' "$tmp/cmp/a/$F"
+expect compare_same 0 "2 frames, the same" compare "$tmp/cmp/a" "$tmp/cmp/b"
+expect compare_different 1 "1 differ" compare "$tmp/cmp/a/$F" grid.0002.obj
+expect compare_missing_frame 3 "$tmp/cmp/a has 2 frames, $tmp/cmp/fewer 1; missing from $tmp/cmp/fewer: grid.0002.obj" compare "$tmp/cmp/a" "$tmp/cmp/fewer"
+expect compare_sample_counts 3 "shot3.pc2: has 3 samples; $tmp/shot.pc2 has 2" compare "$tmp/shot.pc2" "$tmp/shot3.pc2"
+expect compare_vertex_counts 3 "cut_lines.0001.obj: has 9 vertices; $tmp/cmp/a/$F has 16" compare "$tmp/cmp/a/$F" "$tmp/cut_lines.0001.obj"
+expect compare_other_faces 3 "$tmp/cmp/face/$F:20: face 2 differs from $tmp/cmp/a/$F:20: the two are not one mesh" compare "$tmp/cmp/a/$F" "$tmp/cmp/face/$F"
+expect compare_cache_formats 3 "shot.mdd: is a mdd cache, $tmp/shot.pc2 a pc2 one: compare caches of one format" compare "$tmp/shot.pc2" "$tmp/shot.mdd"
+expect compare_bind_vertices 3 "has 16 vertices; the bind (cube.obj) has 8" compare --bind cube.obj "$tmp/shot.pc2" "$tmp/shot.pc2"
+expect compare_empty_folder 3 "$tmp/cmp/empty: holds no frame (no .obj, .gltf, .glb, .pc2 or .mdd file)" compare "$tmp/cmp/empty" "$tmp/cmp/a"
+expect compare_no_such_output 3 "$tmp/cmp/none: no such file or folder" compare "$tmp/cmp/a" "$tmp/cmp/none"
+expect compare_unlike_outputs 2 "are not alike: compare two folders, two meshes or two caches" compare "$tmp/cmp/a" "$tmp/shot.pc2"
+expect compare_one_output 2 "B is required" compare "$tmp/cmp/a"
 
 # --- files and folders -------------------------------------------------------------------------
 expect file_missing_bind 3 "nothere.obj: cannot read: No such file or directory" --patch $P "$tmp/nothere.obj" $F

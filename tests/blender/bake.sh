@@ -7,6 +7,10 @@
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
+# shellcheck source=../cli/require.sh
+. "$root/tests/cli/require.sh"
+require_program SKINSLIDE
+require_folder SKINSLIDE_MODULE_DIR
 # shellcheck source=../cli/cannot.sh
 . "$root/tests/cli/cannot.sh"
 if ! command -v blender >/dev/null 2>&1; then
@@ -14,8 +18,8 @@ if ! command -v blender >/dev/null 2>&1; then
   echo "bake.sh: installing blender (Debian)" >&2
   # scripts/deps.sh: the one installer, one apt-get at a time (tests/cli/blender_cache.sh may be
   # installing Blender at the same moment).
-  "$root/scripts/deps.sh" blender >/tmp/skinslide-apt-blender.log 2>&1 ||
-    cannot "apt-get install blender failed (/tmp/skinslide-apt-blender.log)"
+  apt_log=$("$root/scripts/deps.sh" blender 2>&1) ||
+    cannot "apt-get install blender failed: $(tail -n 1 <<<"$apt_log")"
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

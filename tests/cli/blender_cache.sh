@@ -13,7 +13,11 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/blender_cache.sh
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+# shellcheck source=require.sh
+. "$root/tests/cli/require.sh"
+require_program SKINSLIDE
+require_tools /usr/bin/python3
+bin=$SKINSLIDE
 blender=${BLENDER:-blender}
 failed=0
 passed=0

@@ -18,6 +18,7 @@ the ICT face; a failure instead when SKINSLIDE_REQUIRE_SHARED=1.
 Usage: SKINSLIDE=path/to/skinslide conformance.py
 """
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -81,6 +82,13 @@ def main():
         return 2
     require_shared([ORACLE] + [os.path.join(ICT, n + ".obj") for n in ("generic_neutral_mesh",) + ICT_EXPRESSIONS])
     tmp = tempfile.mkdtemp(prefix="skinslide_conformance_")
+    try:
+        return conform(binary, tmp)
+    finally:  # nothing left in the temporary folder
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def conform(binary, tmp):
     ict_patch = os.path.join(tmp, "ict_face.txt")
     with open(ict_patch, "w") as fh:  # faces 0..9229: the face with mouth and eye holes
         fh.write("\n".join(str(i) for i in range(9230)) + "\n")

@@ -49,7 +49,7 @@ p = r["patches"][0]
 assert p["free"] == 288 and p["moving"] == 288 and p["outer_loop_start"] == 352 and not p["skipped"]
 assert [f["path"] for f in r["frames"]] == ["data/elbow/frames/elbow.000%d.obj" % k for k in range(1, 6)]
 keys = ["energy_before", "energy_after", "iterations", "solves", "solve_iterations", "stop", "held",
-        "flips", "moved",
+        "flips", "at_rest", "moved",
         "max_slide", "mean_slide", "spread_frame", "spread_slid"]
 for f in r["frames"]:
     fp = f["patches"][0]
@@ -58,10 +58,12 @@ for f in r["frames"]:
     assert fp["stop"] in ("at rest", "converged", "no descent", "limit"), fp
     assert fp["solves"] >= fp["iterations"] and fp["solve_iterations"] <= 8 * fp["solves"], fp
 assert r["frames"][0]["patches"][0]["stop"] == "at rest"  # elbow.0001 is the bind pose
+assert [f["patches"][0]["at_rest"] for f in r["frames"]] == [True] + [False] * 4
+assert r["frames"][0]["patches"][0]["moved"] == 0  # so it comes back unchanged
 last = r["frames"][-1]["patches"][0]
 assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and last["iterations"] > 0
 assert list(r["totals"]) == ["frames", "moved", "iterations", "held", "flips", "max_slide"], list(r["totals"])
-assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 5 * 288 and r["totals"]["flips"] == 0
+assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 4 * 288 and r["totals"]["flips"] == 0
 assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
 PY
 check "the report (--method paper) is JSON with the documented keys" $py - "$tmp/p1.json" <<'PY'
@@ -71,13 +73,13 @@ assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "p
                    "totals", "timings"], list(r)
 assert [f["path"] for f in r["frames"]] == ["data/elbow/frames/elbow.000%d.obj" % k for k in range(1, 6)]
 keys = ["cg_iterations", "cg_residual", "direct_solve", "located_in_image", "located_fallback",
-        "frame_net_flips", "moved", "max_slide", "mean_slide", "spread_frame", "spread_slid"]
+        "frame_net_flips", "at_rest", "moved", "max_slide", "mean_slide", "spread_frame", "spread_slid"]
 for f in r["frames"]:
     assert list(f["patches"][0]) == keys, list(f["patches"][0])
 last = r["frames"][-1]["patches"][0]
 assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and not last["direct_solve"]
 assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
-assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 5 * 288
+assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 4 * 288
 assert r["options"]["method"] == "paper" and r["options"]["density"] == "inverse"
 assert r["patches"][0]["corners"] == [352, 360, 368, 376]
 PY

@@ -5,6 +5,7 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/dumps.sh
 set -u
 source "$(dirname "$0")/harness.sh"
+require_tools exrheader
 
 lists() {  # lists FILE PATTERN...: exrheader reads FILE and prints every PATTERN
   local out

@@ -8,7 +8,11 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/farm.sh
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+# shellcheck source=require.sh
+. "$root/tests/cli/require.sh"
+require_program SKINSLIDE
+require_tools /usr/bin/python3 xargs
+bin=$SKINSLIDE
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cd "$root"

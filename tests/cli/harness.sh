@@ -1,9 +1,13 @@
-# The shared frame of the end-to-end scripts, sourced by each: paths, a scratch folder removed on
-# exit, `check NAME COMMAND...` (counts a pass when COMMAND succeeds), `require_shared FILE...`
-# (skips the script when ../shared lacks a file) and `finish NAME`.
+# The shared frame of the end-to-end scripts, sourced by each: SKINSLIDE checked first (require.sh),
+# paths, a scratch folder removed on exit, `check NAME COMMAND...` (counts a pass when COMMAND
+# succeeds), `require_shared FILE...` (skips the script when ../shared lacks a file) and `finish NAME`.
 here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
-bin=${SKINSLIDE:?set SKINSLIDE to the skinslide binary}
+# shellcheck source=require.sh
+. "$root/tests/cli/require.sh"
+require_program SKINSLIDE
+require_tools /usr/bin/python3
+bin=$SKINSLIDE
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 passed=0

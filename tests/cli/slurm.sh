@@ -13,7 +13,13 @@
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/slurm.sh
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
-bin=$(readlink -f "${SKINSLIDE:?set SKINSLIDE to the skinslide binary}")
+# Checked before anything is installed, started or submitted: with SKINSLIDE unset the jobs
+# would run and fail minutes later (a `${SKINSLIDE:?}` inside $(...) ends only the subshell).
+# shellcheck source=require.sh
+. "$root/tests/cli/require.sh"
+require_program SKINSLIDE
+require_tools /usr/bin/python3
+bin=$(readlink -f "$SKINSLIDE")
 export SKINSLIDE=$bin
 shot_frames=24
 chunk=10
@@ -39,8 +45,8 @@ check() {
 [ "$(id -u)" -eq 0 ] || cannot "slurm.sh needs root: slurmd starts the jobs, apt-get installs slurm-wlm"
 for tool in munged slurmctld slurmd sbatch squeue scancel scontrol; do
   if ! command -v "$tool" >/dev/null; then
-    "$root/scripts/deps.sh" slurm-wlm munge >/tmp/skinslide-slurm-apt.log 2>&1 ||
-      cannot "cannot install slurm-wlm munge: $(tail -n 1 /tmp/skinslide-slurm-apt.log)"
+    apt_log=$("$root/scripts/deps.sh" slurm-wlm munge 2>&1) ||
+      cannot "cannot install slurm-wlm munge: $(tail -n 1 <<<"$apt_log")"
     break
   fi
 done

@@ -10,6 +10,10 @@
 #   binary. SLOW_TASK: the task starting at that frame slides its cache with options that take
 #   minutes a frame, so that a test can cancel it mid-run.
 set -eu
+# Checked inline: sbatch runs a copy of this script from its spool folder, away from require.sh.
+[ $# -ge 3 ] || { echo "slurm_task.sh: cannot start: OUT LAST_FRAME SHOT_DIR expected" >&2; exit 2; }
+[ -x "${SKINSLIDE:-}" ] || { echo "slurm_task.sh: cannot start: SKINSLIDE='${SKINSLIDE:-}' is not the skinslide binary" >&2; exit 2; }
+[ -n "${SLURM_ARRAY_TASK_ID:-}" ] || { echo "slurm_task.sh: cannot start: SLURM_ARRAY_TASK_ID is not set (run it with sbatch --array)" >&2; exit 2; }
 out=$1 end=$2 shot=$3 slow=${4:-}
 first=$SLURM_ARRAY_TASK_ID
 last=$((first + ${SLURM_ARRAY_TASK_STEP:-1} - 1))

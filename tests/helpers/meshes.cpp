@@ -1,8 +1,7 @@
 #include "helpers/meshes.h"
 
 #include "helpers/shared_data.h"
-
-#include <unistd.h>
+#include "helpers/temp_dir.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,9 +49,8 @@ std::vector<Index> all_faces(const PolyMesh& mesh) {
 
 std::string temp_dir(const std::string& name) {
   namespace fs = std::filesystem;
-  // The process id keeps two test runs on one machine out of each other's folders.
-  const fs::path dir =
-      fs::temp_directory_path() / ("skinslide_test_" + name + "." + std::to_string(::getpid()));
+  // Inside the process's folder, removed when the test process exits (helpers/temp_dir.h).
+  const fs::path dir = process_temp_dir() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();
@@ -62,8 +60,6 @@ std::string source_path(const std::string& relative) {
   return std::string(SKINSLIDE_SOURCE_DIR) + "/" + relative;
 }
 
-std::string shared_path(const std::string& relative) {
-  return shared_dir() + "/" + relative;
-}
+std::string shared_path(const std::string& relative) { return shared_dir() + "/" + relative; }
 
 }  // namespace skinslide::test

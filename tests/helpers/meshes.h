@@ -21,7 +21,8 @@ PolyMesh tube(int around, int along, double length);
 /// All face ids 0..face_count-1.
 std::vector<Index> all_faces(const PolyMesh& mesh);
 
-/// A fresh empty folder under the test temp dir.
+/// A fresh empty folder in the test process's scratch folder, removed when the process exits
+/// (helpers/temp_dir.h); `name` tells the tests of one process apart.
 std::string temp_dir(const std::string& name);
 
 /// Path of a file in the repository or in the shared folder (helpers/shared_data.h).

@@ -7,11 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "helpers/shared_data.h"
+#include "helpers/temp_dir.h"
 
 namespace skinslide::testing {
 
@@ -43,16 +42,15 @@ inline std::vector<std::string> shared_gltf_relatives(const std::vector<std::str
 }
 
 /// SKINSLIDE_REQUIRE_GLTF("Fox.glb", ...): SKINSLIDE_REQUIRE_SHARED for files of data/gltf.
-#define SKINSLIDE_REQUIRE_GLTF(...) \
+#define SKINSLIDE_REQUIRE_GLTF(...)                             \
   SKINSLIDE_SKIP_IF_MISSING_(::skinslide::test::missing_shared( \
       ::skinslide::testing::shared_gltf_relatives({__VA_ARGS__})))
 
-/// A fresh, empty folder under the system's temp folder, named after the running test and the
-/// process (two test runs on one machine must not share, and delete, each other's files).
+/// A fresh, empty folder named after the running test, in the test process's scratch folder
+/// (removed when the process exits: helpers/temp_dir.h).
 inline std::filesystem::path temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  auto dir = std::filesystem::temp_directory_path() /
-             ("skinslide_tests." + std::to_string(::getpid())) /
+  auto dir = ::skinslide::test::process_temp_dir() /
              (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);

@@ -60,5 +60,14 @@ TEST(FrameRanges, FrameNumberIsTheLastDigitRunBeforeTheExtension) {
   EXPECT_EQ(frame_number("99999999999999999999.obj"), std::nullopt);
 }
 
+TEST(FrameRanges, FrameSequenceIsTheFileNameWithItsFrameNumberAsAHash) {
+  EXPECT_EQ(frame_sequence("frames/arm.0001.obj"), "arm.#.obj");
+  EXPECT_EQ(frame_sequence("other/arm.0002.obj"), frame_sequence("frames/arm.0001.obj"));
+  EXPECT_EQ(frame_sequence("take2/walk_v3.0100.glb"), "walk_v3.#.glb");
+  EXPECT_EQ(frame_sequence("f7_final.obj"), "f#_final.obj");
+  EXPECT_NE(frame_sequence("arm.0001.glb"), frame_sequence("arm.0002.obj"));
+  EXPECT_EQ(frame_sequence("data/elbow/bind.obj"), std::nullopt);
+}
+
 }  // namespace
 }  // namespace skinslide

@@ -2,13 +2,29 @@
 shared test data are, and how to read the command line's OBJ output back exactly."""
 import os
 import pathlib
+import shutil
 import subprocess
+import tempfile
 
 import numpy as np
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SHARED = pathlib.Path(os.environ.get("SKINSLIDE_SHARED_DIR", ROOT.parent / "shared"))
+
+
+def pytest_configure(config):
+    """tmp_path folders in a temporary folder of this session, removed when it ends: pytest's own
+    default (TMPDIR/pytest-of-USER, the last three sessions kept) would outlive the test run."""
+    if config.option.basetemp is None:
+        config.option.basetemp = tempfile.mkdtemp(prefix="skinslide_pytest.")
+        config.skinslide_basetemp = config.option.basetemp
+
+
+def pytest_unconfigure(config):
+    basetemp = getattr(config, "skinslide_basetemp", None)
+    if basetemp:
+        shutil.rmtree(basetemp, ignore_errors=True)
 
 
 def pytest_report_header(config):

@@ -202,3 +202,39 @@ def test_option_specs_declare_what_the_slider_takes():
             with pytest.raises(skinslide.UsageError, match=spec["name"] + " = "):
                 skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes,
                                  method=spec["method"], **{spec["name"]: past})
+
+
+def test_a_cache_written_by_the_module_is_the_commands(cli, tmp_path):
+    """write_cache rounds each coordinate to float32 once, as the command writes a slid cache:
+    the module's PC2 of the slid frames is the command's slid PC2, byte for byte; read_cache reads
+    it back with its header."""
+    bind, patch = DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt"
+    cli("--patch", patch, bind, DATA / "elbow" / "elbow.pc2", "-o", tmp_path / "slid")
+    shot, header = skinslide.read_cache(str(DATA / "elbow" / "elbow.pc2"))
+    assert shot.dtype == np.float32 and shot.shape == (5, 1056, 3)
+    assert header == {"format": "pc2", "points": 1056, "samples": 5, "frames": [1, 2, 3, 4, 5],
+                      "start_frame": 1.0, "sample_rate": 1.0}
+    slider = slider_from_files(bind, patch)
+    slid = np.stack([slider.slide(sample.astype(np.float64))[0] for sample in shot])
+    skinslide.write_cache(str(tmp_path / "module.pc2"), slid, start_frame=1)
+    assert (tmp_path / "module.pc2").read_bytes() == (tmp_path / "slid" / "elbow.pc2").read_bytes()
+    # MDD: times, one a sample; read back as written.
+    skinslide.write_cache(str(tmp_path / "shot.mdd"), slid[:2], times=[0, 1 / 24])
+    back, mdd = skinslide.read_cache(str(tmp_path / "shot.mdd"))
+    assert np.array_equal(back, slid[:2].astype(np.float32))
+    assert mdd["format"] == "mdd" and mdd["frames"] == [0, 1] and len(mdd["times"]) == 2
+
+
+def test_cache_arguments_are_checked(tmp_path):
+    frames = np.zeros((2, 4, 3))
+    with pytest.raises(skinslide.UsageError, match="an MDD cache needs times"):
+        skinslide.write_cache(str(tmp_path / "a.mdd"), frames)
+    with pytest.raises(skinslide.UsageError, match=r"shape \(samples, points, 3\)"):
+        skinslide.write_cache(str(tmp_path / "a.pc2"), np.zeros((4, 3)))
+    with pytest.raises(skinslide.UsageError, match="sampleRate 0"):
+        skinslide.write_cache(str(tmp_path / "a.pc2"), frames, sample_rate=0)
+    with pytest.raises(skinslide.UsageError, match=".pc2 or .mdd"):
+        skinslide.write_cache(str(tmp_path / "a.obj"), frames)
+    with pytest.raises(skinslide.InputError):
+        skinslide.read_cache(str(tmp_path / "none.pc2"))
+    assert not any(tmp_path.iterdir()), "a refused cache leaves no file"

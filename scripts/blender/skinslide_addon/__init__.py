@@ -1,5 +1,6 @@
 """skinslide in Blender: slides the skin of a deformed mesh (armature, shape keys, any modifier)
-over a frame range and bakes the result as shape keys of a copy that plays it back.
+over a frame range and bakes the result onto a copy that plays it back: a PC2 point cache played
+by a Mesh Cache modifier (point_cache.py), or shape keys for short ranges.
 
 The slide is the skinslide Python module's (lib/python), the same bits as the command line on
 the positions Blender evaluates. Install: scripts/blender/README.md.
@@ -11,7 +12,7 @@ bl_info = {
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
     "location": "Properties > Object > Skin Slide",
-    "description": "Slide the skin of a deformed mesh and bake it as shape keys",
+    "description": "Slide the skin of a deformed mesh and bake it to a point cache",
     "category": "Animation",
 }
 
@@ -31,6 +32,8 @@ try:
     import skinslide
 except ImportError:  # the panel says so; the operator refuses to run
     skinslide = None
+
+from . import point_cache  # noqa: E402
 
 SLID_SUFFIX = " slid"     # the baked copy is named after the object
 KEY_PREFIX = "skinslide"  # its shape keys: skinslide.0001, ...
@@ -77,6 +80,15 @@ class SkinslideSettings(bpy.types.PropertyGroup):
     frame_start: bpy.props.IntProperty(name="Start", default=1)
     frame_end: bpy.props.IntProperty(name="End", default=250)
     use_scene_range: bpy.props.BoolProperty(name="Scene range", default=True)
+    bake_to: bpy.props.EnumProperty(
+        name="Bake to", default="PC2",
+        items=[("PC2", "Point cache", "A PC2 file played by a Mesh Cache modifier: beside the "
+                "saved .blend, or in the cache folder"),
+               ("SHAPE_KEYS", "Shape keys", "One shape key a frame, kept in the .blend: for short "
+                "ranges")])
+    cache_folder: bpy.props.StringProperty(
+        name="Cache folder", subtype="DIR_PATH",
+        description="Where the PC2 goes (<object>_slid.pc2); empty: beside the .blend")
 
 
 for _spec in OPTION_SPECS:  # strength, method and every method's options
@@ -165,8 +177,8 @@ def evaluated_positions(obj, depsgraph, vertex_count):
 
 
 def baked_copy(context, obj):
-    """A copy of the object's undeformed mesh, without modifiers, for the shape keys: replaced
-    when it exists."""
+    """A copy of the object's undeformed mesh, without modifiers or shape keys, for the baked
+    slide: replaced when it exists."""
     name = obj.name + SLID_SUFFIX
     old = bpy.data.objects.get(name)
     if old is not None:
@@ -192,9 +204,20 @@ def write_shape_keys(copy, frames, slid):
             key.keyframe_insert("value", frame=f)
 
 
+def bake_result(context, obj, frames, slid, path):
+    """The slid frames onto a fresh copy '<object> slid': with a cache `path`, a PC2 there and a
+    Mesh Cache modifier playing it; else shape keys. Returns what to add to the report."""
+    if path is None:
+        write_shape_keys(baked_copy(context, obj), frames, slid)
+        return ""
+    point_cache.write_pc2(skinslide, path, frames, slid)
+    point_cache.add_mesh_cache(baked_copy(context, obj), path, frames[0])
+    return f", played by a Mesh Cache modifier from {path}"
+
+
 class SKINSLIDE_OT_bake(bpy.types.Operator):
-    """Slide the skin of the active mesh over the frame range and bake it as shape keys of a
-    copy named '<object> slid'"""
+    """Slide the skin of the active mesh over the frame range and bake it onto a copy named
+    '<object> slid': a PC2 point cache played by a Mesh Cache modifier, or shape keys"""
     bl_idname = "object.skinslide_bake"
     bl_label = "Bake skin slide"
     bl_options = {"REGISTER", "UNDO"}
@@ -220,6 +243,8 @@ class SKINSLIDE_OT_bake(bpy.types.Operator):
         wm.progress_begin(0, 2 * len(frames))
         current = scene.frame_current
         try:
+            # Where the cache goes, known before any frame is slid (an unsaved .blend refuses).
+            path = point_cache.cache_path(obj, s.cache_folder) if s.bake_to == "PC2" else None
             slider = make_slider(obj, s)
             poses = []
             for k, frame in enumerate(frames):
@@ -235,15 +260,15 @@ class SKINSLIDE_OT_bake(bpy.types.Operator):
                 for done, job in enumerate(concurrent.futures.as_completed(jobs)):
                     slid[jobs[job]] = job.result()[0]
                     wm.progress_update(len(frames) + done + 1)
-            write_shape_keys(baked_copy(context, obj), frames, slid)
-        except (skinslide.Error, ValueError) as e:
+            baked = bake_result(context, obj, frames, slid, path)
+        except (skinslide.Error, ValueError, OSError) as e:
             self.report({"ERROR"}, f"skinslide: {e}")
             return {"CANCELLED"}
         finally:
             scene.frame_set(current)
             wm.progress_end()
         self.report({"INFO"}, f"skinslide: {len(frames)} frames baked into "
-                              f"'{obj.name}{SLID_SUFFIX}'")
+                              f"'{obj.name}{SLID_SUFFIX}'{baked}")
         return {"FINISHED"}
 
 
@@ -283,6 +308,10 @@ class SKINSLIDE_PT_panel(bpy.types.Panel):
         row.enabled = not s.use_scene_range
         row.prop(s, "frame_start")
         row.prop(s, "frame_end")
+        col.separator()
+        col.prop(s, "bake_to")
+        if s.bake_to == "PC2":
+            col.prop(s, "cache_folder")
         layout.operator(SKINSLIDE_OT_bake.bl_idname, icon="RENDER_ANIMATION")
 
 

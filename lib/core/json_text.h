@@ -1,0 +1,13 @@
+// JSON text that every report writes the same way: `skinslide --report` (pipeline/report.cpp) and
+// `skinslide compare --report` (compare/compare_report.cpp).
+#pragma once
+
+#include <string>
+
+namespace skinslide {
+
+/// `s` as a JSON string, quotes included: `"` and `\` escaped, newline and tab as `\n` and `\t`,
+/// any other control character as `\u00XX`; every other byte (UTF-8 included) as it is.
+std::string json_string(const std::string& s);
+
+}  // namespace skinslide
