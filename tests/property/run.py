@@ -284,7 +284,7 @@ def main():
           f"outcomes {dict(sorted(codes.items(), key=str))}; slowest case {slowest[0]:.1f} s "
           f"(seed {slowest[1]}); {len(failed)} failed"
           + (f": seeds {failed}" if failed else ""), flush=True)
-    if not failed and not args.work:
+    if not args.work:  # failing cases are in keep
         shutil.rmtree(work, ignore_errors=True)
     return 1 if failed else 0
 
