@@ -1027,6 +1027,17 @@ def _expected_patch_moves(case, ci):
     return free, moving
 
 
+def at_rest(case, ci, frame):
+    """lib/pipeline/README.md, report: a patch with a free vertex whose every vertex is the
+    bind's to float32 precision is at rest and comes back unchanged (`moved` 0)."""
+    c = case.comps[ci]
+    if not _expected_patch_moves(case, ci)[0]:
+        return False
+    verts = np.asarray(c.vertices, dtype=np.int64)
+    return bool(np.array_equal(np.asarray(frame, dtype=np.float64)[verts].astype(np.float32),
+                               case.mesh.positions[verts].astype(np.float32)))
+
+
 def _finite_numbers(node, path="report"):
     if isinstance(node, dict):
         for k, v in node.items():
@@ -1124,6 +1135,12 @@ def _check_report(case, folder, pairs):
                     problems.append(f"report: frame {k} patch {ci} energy rose {eb} -> {ea}")
             else:
                 want_moved = len([v for v in free if case.w_eff[v] > 0]) if free else 0
+            if pair is not None and "at_rest" in fp and \
+                    bool(fp["at_rest"]) != at_rest(case, ci, pair.frame):
+                problems.append(f"report: frame {k} patch {ci} at_rest {fp['at_rest']!r}, the "
+                                f"frame says {at_rest(case, ci, pair.frame)}")
+            if fp.get("at_rest"):
+                want_moved = 0
             if fp.get("moved") != want_moved:
                 problems.append(f"report: frame {k} patch {ci} moved {fp.get('moved')}, expected "
                                 f"{want_moved} (free {len(free)}, weight > 0: {len(moving)})")

@@ -273,9 +273,16 @@ def check(case, result, outs):
                                     case.method == "elastic" or not case.mesh.degenerate))
         want_moved = 0
         mx = 0.0
+        frame64 = p.astype(np.float64)
         for ci in range(len(case.comps)):
             free, moving = _expected_patch_moves(case, ci)
-            if free:
+            rest = cli_case.at_rest(case, ci, frame64)
+            reported = rep.get("patches", [])
+            if ci < len(reported) and "at_rest" in reported[ci] and \
+                    bool(reported[ci]["at_rest"]) != rest:
+                problems.append(f"{label}: patch {ci} at_rest {reported[ci]['at_rest']!r}, the "
+                                f"frame says {rest}")
+            if free and not rest:
                 want_moved += len(moving)
                 if moving:
                     mx = max(mx, float(np.linalg.norm(out[moving] - p[moving], axis=1).max()))
