@@ -249,6 +249,10 @@ def build(seed, meshes, ctx):
         if case.mode == "files" and written and rng.random() < 0.05:
             rng.choice(written).bad = rng.choice(["nan", "short"])
     case.cache_obj = case.mode in ("pc2", "mdd") and mesh.kind == "obj" and rng.random() < 0.3
+    if case.cache_obj and case.usage_error in ("--frames selects samples with gaps",
+                                                "--frames selects nothing or gaps") and \
+            _selected(case.frames_spec, [f.number for f in case.frames]):
+        case.usage_error = None  # a file a frame: a cache's gaps do not matter
     # --no-slide: every frame read, checked and written unchanged (no bind set-up)
     case.no_slide = rng.random() < 0.04
     # outputs that would overwrite inputs or each other: refused before any work (exit 2)
