@@ -111,6 +111,9 @@ std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const doub
   for (size_t k = 0; k < result.slid.vertex.size(); ++k) {
     const Vec3& p = result.slid.position[k];
     double* xyz = out.data() + 3 * static_cast<size_t>(result.slid.vertex[k]);
+    // A vertex the slide left where the frame has it keeps the frame's bits (a -0 stays -0), as
+    // the command's OBJ writer keeps its text: the module gives the command's bits.
+    if (p.x() == xyz[0] && p.y() == xyz[1] && p.z() == xyz[2]) continue;
     xyz[0] = p.x();
     xyz[1] = p.y();
     xyz[2] = p.z();

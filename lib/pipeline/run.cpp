@@ -153,8 +153,12 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
       std::none_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; });
   if (cache_out && all_written) cache_out->commit();
   // Each output was flushed before its rename; flushing the folders makes the renames durable.
-  for (const std::string& folder : {plan.folder, o.dump_dir, o.preview_dir})
-    if (!folder.empty()) sync_folder(folder);
+  // The preview folder is made with the first preview: when every frame failed before one,
+  // there is nothing in it to flush, and the frames' errors below are the run's.
+  for (const std::string& folder : {plan.folder, o.dump_dir, o.preview_dir}) {
+    std::error_code ec;
+    if (!folder.empty() && fs::is_directory(folder, ec)) sync_folder(folder);
+  }
   RunResult result;
   result.frames = count;
   result.not_converged = not_converged;

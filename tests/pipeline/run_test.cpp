@@ -213,5 +213,28 @@ TEST(Run, ABadFrameStopsTheRunOrWithKeepGoingIsNamed) {
   EXPECT_TRUE(fs::exists(dir / "kept/elbow.0003.obj"));
 }
 
+TEST(Run, AFirstFrameThatFailsIsTheErrorWithPreviewsAsked) {
+  // The preview folder is made with the first preview: when no frame got that far, the run's
+  // error is still the frame's (it was "preview: cannot write", exit 4, from flushing a folder
+  // never made; found by tests/property).
+  const test::TempDir dir("run_bad_first_frame");
+  RunOptions o = elbow_run(dir / "slid");
+  o.frames = {test::source_path("data/face/frames/face.0002.obj")};  // another mesh
+  o.preview_dir = dir / "preview";
+  o.threads = 1;
+  try {
+    run(o);
+    ADD_FAILURE() << "a frame of another mesh was slid";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(o.frames[0] + ": has ", 0), 0u) << e.what();
+  }
+  o.keep_going = true;
+  const RunResult result = run(o);
+  ASSERT_EQ(result.failures.size(), 1u);
+  EXPECT_EQ(result.failures[0].kind(), ErrorKind::Input);
+  EXPECT_FALSE(fs::exists(dir / "slid/face.0002.obj"));
+}
+
 }  // namespace
 }  // namespace skinslide
