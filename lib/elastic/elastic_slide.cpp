@@ -54,7 +54,6 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   report.solves = relaxed.solves;
   report.solve_iterations = relaxed.solver_iterations;
   report.held = relaxed.held;
-  report.gain_at_frame = relaxed.gain_at_frame;
   report.gain_left = relaxed.gain_left;
   report.stop = stop_name(relaxed.stop);
   report.converged = stop_converged(relaxed.stop);

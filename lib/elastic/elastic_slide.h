@@ -35,8 +35,7 @@ struct ElasticReport {
   int solve_iterations = 0;  ///< conjugate-gradient iterations of those solves
   int held = 0;              ///< vertex-steps held in place to keep a step a descent
   int slid_flips = 0;        ///< slid triangles whose normal turns against the frame's (want 0)
-  double gain_at_frame = 0;  ///< the first-order gain left at the frame (relax.h, rule 10)
-  double gain_left = 0;      ///< and at the slid patch
+  double gain_left = 0;      ///< the first-order gain left at the slid patch (relax.h, rule 10)
   std::string stop;          ///< why the relaxation stopped; empty: the patch was skipped
   bool converged = true;     ///< the stop says the slid patch is stationary (or nothing moves)
 };

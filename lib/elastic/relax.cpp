@@ -190,7 +190,6 @@ void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, Elastic
   ElasticStop last_round = ElasticStop::SmallGain;
   for (int round = 0; round < options.rotation_fits; ++round) {
     relaxation.fit_rotations();
-    if (round == 0) result.gain_at_frame = relaxation.measure();
     const double E_round = relaxation.energy();
     int it = 0;
     last_round = ElasticStop::IterationLimit;
@@ -320,7 +319,10 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     for (Index i = 0; i < m; ++i) at_start(i);
     result.energy_after = result.energy_before;
     result.stop = ElasticStop::NoDescent;
-    result.gain_left = result.gain_at_frame;
+    ElasticResult scratch;
+    Relaxation at_frame(setup, surface, s, scratch);
+    at_frame.fit_rotations();
+    result.gain_left = at_frame.measure();
     return result;
   }
   for (Index i = 0; i < m; ++i) {

@@ -92,9 +92,8 @@ struct ElasticResult {
   /// Vertex-steps held in place: their energy would rise, a triangle of theirs would fold, or
   /// they were held for the step that won.
   int held = 0;
-  /// Rule 10's measure (stationarity.h): the first-order gain left at the frame and at the
-  /// slid patch, in the energy's units.
-  double gain_at_frame = 0;
+  /// Rule 10's measure (stationarity.h): the first-order gain left at the slid patch (at the
+  /// frame when it is returned), in the energy's units.
   double gain_left = 0;
   ElasticStop stop = ElasticStop::Converged;
 };

@@ -26,6 +26,27 @@ struct UnionFind {
 
 [[noreturn]] void throw_patch(const std::string& what) { throw Error(ErrorKind::Input, what); }
 
+// A component with L boundary loops is a disk with L - 1 holes exactly when its Euler
+// characteristic V - E + F is 2 - L; each handle lowers it by 2. Both methods chart a patch as a
+// disk: a handle (a torso with both arms, a whole ear through its helix) cannot be flattened.
+void require_disk_with_holes(const PolyMesh& mesh, const PatchComponent& comp,
+                             const FaceNamer& name_face) {
+  long long corners = 0, border = 0;
+  for (Index f : comp.faces) corners += mesh.face_size(f);
+  for (const std::vector<Index>& loop : comp.loops) border += static_cast<long long>(loop.size());
+  const long long edges = (corners + border) / 2;  // inner edges twice, border edges once
+  const long long euler = static_cast<long long>(comp.vertices.size()) - edges +
+                          static_cast<long long>(comp.faces.size());
+  const long long loops = static_cast<long long>(comp.loops.size());
+  if (euler == 2 - loops) return;
+  throw_patch("the patch component with " + name_face(comp.faces.front()) + " (" +
+              std::to_string(comp.faces.size()) + " faces) is not a disk with holes: it has " +
+              std::to_string((2 - loops - euler) / 2) + " handle(s) (V - E + F = " +
+              std::to_string(euler) + " with " + std::to_string(loops) +
+              " boundary loops); cut it into disks, e.g. leave a ring of faces out across each "
+              "handle");
+}
+
 struct HalfEdge {
   Index lo, hi;    // undirected edge, lo < hi
   Index face;      // position of the face in the selection
@@ -231,6 +252,7 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
                   std::to_string(comp.faces.size()) +
                   " faces) has no boundary: it is a closed surface; leave at least one face out");
     comp.loops = boundary_loops(mesh, comp.faces);
+    require_disk_with_holes(mesh, comp, name_face);
   }
   return out;
 }

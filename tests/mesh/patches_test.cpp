@@ -1,5 +1,7 @@
 #include "mesh/patches.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -109,6 +111,33 @@ TEST(Patches, RejectsAClosedComponent) {
   const std::string msg = error_of(cube, {test::all_faces(cube)});
   EXPECT_NE(msg.find("no boundary"), std::string::npos) << msg;
   EXPECT_EQ(error_of(cube, {{0, 1, 2, 3, 4}}), "");
+}
+
+// A torus of n x m quads with one quad left out: one boundary loop, one handle (V - E + F = -1
+// where a disk with one loop has 1). Neither method can chart it as a disk.
+TEST(Patches, RejectsAComponentWithAHandle) {
+  PolyMesh torus;
+  const int n = 6, m = 4;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double a = 2 * M_PI * i / n, b = 2 * M_PI * j / m;
+      torus.positions.push_back(
+          Vec3((2 + std::cos(b)) * std::cos(a), (2 + std::cos(b)) * std::sin(a), std::sin(b)));
+    }
+  const auto id = [&](int i, int j) { return static_cast<Index>((i % n) * m + j % m); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) torus.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  std::vector<Index> all_but_one;
+  for (Index f = 1; f < torus.face_count(); ++f) all_but_one.push_back(f);
+  const std::string msg = error_of(torus, {all_but_one});
+  EXPECT_NE(msg.find("face 1 (23 faces) is not a disk with holes: it has 1 handle(s) "
+                     "(V - E + F = -1 with 1 boundary loops)"),
+            std::string::npos)
+      << msg;
+  // Cut across the handle as well (a ring of m faces out): a band, two loops, a disk with a hole.
+  std::vector<Index> band;
+  for (Index f = m; f < torus.face_count(); ++f) band.push_back(f);
+  EXPECT_EQ(error_of(torus, {band}), "");
 }
 
 TEST(Patches, RejectsAFaceInTwoSelections) {

@@ -106,6 +106,11 @@ def split_selection(faces, selected, index):
                 seen.add(w)
                 w = nxt[w]
             loops.append(loop)
+        corners = sum(len(faces[sel[i]]) for i in members)
+        edges = (corners + sum(len(loop) for loop in loops)) // 2
+        if len(fans) - edges + len(members) != 2 - len(loops):
+            raise Refusal(f"patch file {index}: component with face {sel[members[0]]} "
+                          "is not a disk with holes (it has a handle)")
         comps.append(Component(index, [sel[i] for i in members], sorted(fans), boundary, loops))
     return comps
 
