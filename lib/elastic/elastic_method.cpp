@@ -33,6 +33,11 @@ Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& p
   return f;
 }
 
+bool converged(const ElasticReport& r) {
+  return r.stop.empty() || r.stop == stop_name(ElasticStop::Converged) ||
+         r.stop == stop_name(ElasticStop::AtRest);
+}
+
 double first_order_share(const ElasticReport& r) {
   return r.energy_before > 0 ? r.gain_left / r.energy_before : 0.0;
 }
@@ -44,7 +49,7 @@ Figures report_figures(const ElasticReport& r) {
           {"solves", static_cast<long long>(r.solves)},
           {"solve_iterations", static_cast<long long>(r.solve_iterations)},
           {"stop", r.stop.empty() ? std::string("skipped") : r.stop},
-          {"converged", r.converged},
+          {"converged", converged(r)},
           {"first_order_gain", r.gain_left},
           {"first_order_share", first_order_share(r)},
           {"held", static_cast<long long>(r.held)},
@@ -55,7 +60,7 @@ void ElasticTotals::add(const ElasticReport& r) {
   iterations += r.iterations;
   held += r.held;
   flips += r.slid_flips;
-  not_converged += r.converged ? 0 : 1;
+  not_converged += converged(r) ? 0 : 1;
 }
 
 Figures ElasticTotals::figures() const {
@@ -66,7 +71,7 @@ Figures ElasticTotals::figures() const {
 }
 
 std::string convergence_text(const ElasticReport& r) {
-  if (r.stop == "at rest" || r.stop.empty()) return r.stop;
+  if (r.stop.empty() || r.stop == stop_name(ElasticStop::AtRest)) return r.stop;
   return r.stop + ", first-order gain left " + log_number(100 * first_order_share(r)) + "%";
 }
 
@@ -83,7 +88,7 @@ std::string frame_summary(const std::vector<Patch>& patches,
     flips += r.slid_flips;
     before += r.energy_before;
     after += r.energy_after;
-    if (!r.converged)
+    if (!converged(r))
       unconverged += (unconverged.empty() ? ", not converged: patch " : ", patch ") +
                      std::to_string(p) + " (" + convergence_text(r) + ")";
   }

@@ -42,6 +42,9 @@ Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& p
 /// solve_iterations, stop, converged, first_order_gain, first_order_share, held, flips.
 Figures report_figures(const ElasticReport& report);
 
+/// The stop says the slid patch is stationary ("converged", "at rest"), or nothing slid (skipped).
+bool converged(const ElasticReport& report);
+
 /// The first-order gain left as a share of the frame's energy (0 without energy).
 double first_order_share(const ElasticReport& report);
 

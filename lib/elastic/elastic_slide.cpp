@@ -56,7 +56,6 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   report.held = relaxed.held;
   report.gain_left = relaxed.gain_left;
   report.stop = stop_name(relaxed.stop);
-  report.converged = stop_converged(relaxed.stop);
   const Chart& chart = setup.chart;
   slid.net = patch.bind_net;
   slid.frame_in_bind_net = true;

@@ -37,7 +37,6 @@ struct ElasticReport {
   int slid_flips = 0;        ///< slid triangles whose normal turns against the frame's (want 0)
   double gain_left = 0;      ///< the first-order gain left at the slid patch (relax.h, rule 10)
   std::string stop;          ///< why the relaxation stopped; empty: the patch was skipped
-  bool converged = true;     ///< the stop says the slid patch is stationary (or nothing moves)
 };
 
 struct ElasticSlide {

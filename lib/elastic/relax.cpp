@@ -56,7 +56,9 @@ class Relaxation {
 
   // Rule 10's first-order measure at the current state, for the rotations last fitted (which
   // minimise the energy there: g_ is the ARAP energy's own gradient).
-  double measure() const { return stationarity(surface_, setup_.movable, state_, g_, setup_.metric); }
+  double measure() const {
+    return stationarity(surface_, setup_.movable, state_, g_, setup_.metric);
+  }
 
   // One step: false when no step lowers the energy, or the direction could not be solved.
   bool step() {
@@ -236,10 +238,6 @@ const char* stop_name(ElasticStop stop) {
       return "solve failed";
   }
   return "unknown";
-}
-
-bool stop_converged(ElasticStop stop) {
-  return stop == ElasticStop::AtRest || stop == ElasticStop::Converged;
 }
 
 ArapTriangles arap_triangles(const ElasticSetup& setup) {

@@ -74,9 +74,6 @@ enum class ElasticStop {
 /// "no descent", "solve failed".
 const char* stop_name(ElasticStop stop);
 
-/// True for the stops that say the slid patch is stationary: "at rest" and "converged".
-bool stop_converged(ElasticStop stop);
-
 /// One patch's slide in one frame.
 struct ElasticResult {
   /// Per movable vertex (parallel to ElasticSetup::movable): its chart point and where that lies.

@@ -130,11 +130,6 @@ Vec3 steepest_descent(const FrameSurface& surface, Index node, const ChartPoint&
   return -lowest.slope * lowest.direction;
 }
 
-double one_sided_descent(const FrameSurface& surface, Index node, const ChartPoint& where,
-                         const Vec3& g) {
-  return steepest_descent(surface, node, where, g).norm();
-}
-
 double stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
                     const SlideState& state, const Positions3& gradient,
                     const ElasticMetric& metric) {
@@ -143,7 +138,8 @@ double stationarity(const FrameSurface& surface, const std::vector<Index>& movab
   Positions2 xy(m), z0(m), work;
   for (Index i = 0; i < m; ++i) {
     const Index v = movable[i];
-    const Vec3 d = steepest_descent(surface, state.on_node[i] ? v : -1, state.where[i], gradient[v]);
+    const Vec3 d =
+        steepest_descent(surface, state.on_node[i] ? v : -1, state.where[i], gradient[v]);
     xy[i] = Vec2(d.x(), d.y());
     z0[i] = Vec2(d.z(), 0);
   }

@@ -34,8 +34,4 @@ double stationarity(const FrameSurface& surface, const std::vector<Index>& movab
 Vec3 steepest_descent(const FrameSurface& surface, Index node, const ChartPoint& where,
                       const Vec3& g);
 
-/// Its rate: |steepest_descent|, per unit of 3D length.
-double one_sided_descent(const FrameSurface& surface, Index node, const ChartPoint& where,
-                         const Vec3& g);
-
 }  // namespace skinslide

@@ -15,6 +15,14 @@
 namespace skinslide {
 namespace {
 
+// The first patch of a slid frame that did not converge, and why; none: result.patches.size().
+std::pair<size_t, std::string> first_unconverged(const FrameResult& result) {
+  for (size_t p = 0; p < result.patches.size(); ++p)
+    if (std::string fault = convergence_fault(result.patches[p].method); !fault.empty())
+      return {p, std::move(fault)};
+  return {result.patches.size(), std::string()};
+}
+
 // slide_frame, with the frame named in its errors; with --require-converged a patch that did
 // not converge fails the frame before anything of it is written.
 FrameResult slide_named(const BindSetup& setup, const RunOptions& o, const Positions3& positions,
@@ -28,11 +36,10 @@ FrameResult slide_named(const BindSetup& setup, const RunOptions& o, const Posit
     throw Error(e.kind(), name + ": " + e.what());
   }
   if (o.require_converged)
-    for (size_t p = 0; p < result.patches.size(); ++p)
-      if (const std::string fault = convergence_fault(result.patches[p].method); !fault.empty())
-        throw Error(ErrorKind::Numeric, name + ": patch " + std::to_string(p) +
-                                            ": did not converge (" + fault +
-                                            "; --require-converged)");
+    if (const auto [p, fault] = first_unconverged(result); !fault.empty())
+      throw Error(ErrorKind::Numeric, name + ": patch " + std::to_string(p) +
+                                          ": did not converge (" + fault +
+                                          "; --require-converged)");
   return result;
 }
 
@@ -52,12 +59,11 @@ void write_frame_pictures(const BindSetup& setup, const RunOptions& o,
 }
 
 // The frame's log lines, then its patches handed to the report's record (their nets dropped).
-FrameOutcome finish_frame(const BindSetup& setup, FrameResult& result,
-                                  const std::string& label, const std::string& out_path,
-                                  double read_seconds, double write_seconds, ReportFrame* record) {
-  FrameOutcome outcome{frame_lines(setup, result, label, out_path)};
-  for (const PatchFrameReport& p : result.patches)
-    outcome.converged = outcome.converged && convergence_fault(p.method).empty();
+FrameOutcome finish_frame(const BindSetup& setup, FrameResult& result, const std::string& label,
+                          const std::string& out_path, double read_seconds, double write_seconds,
+                          ReportFrame* record) {
+  FrameOutcome outcome{frame_lines(setup, result, label, out_path),
+                       first_unconverged(result).second.empty()};
   if (record)
     record_frame(*record, label, out_path, read_seconds, write_seconds, std::move(result.patches));
   return outcome;
@@ -75,8 +81,8 @@ void write_file_frame(const MeshFile& frame, const SlidVertices& slid, const std
 }
 
 FrameOutcome run_frame(const BindSetup& setup, const MeshFile& bind, const RunOptions& o,
-                               const std::string& frame_path, const std::string& out_path,
-                               CacheSlot slot, ReportFrame* record) {
+                       const std::string& frame_path, const std::string& out_path, CacheSlot slot,
+                       ReportFrame* record) {
   auto t0 = Clock::now();
   MeshFile frame = read_mesh_file(frame_path, mesh_read_options(o));
   require_same_topology(bind, frame);
@@ -84,8 +90,8 @@ FrameOutcome run_frame(const BindSetup& setup, const MeshFile& bind, const RunOp
   const double read_seconds = seconds_since(t0);
   if (o.no_slide) {
     write_file_frame(frame, SlidVertices{}, out_path, slot);
-    return {{{LogLevel::Info,
-              "skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path}}};
+    return {
+        {{LogLevel::Info, "skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path}}};
   }
   FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
   write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
@@ -111,10 +117,9 @@ void write_cache_frame(const MeshFile& bind, const RunOptions& o, CacheSample fr
 }
 
 // Sample k of a point cache: read, slid and written (write_cache_frame).
-FrameOutcome run_cache_frame(const BindSetup& setup, const MeshFile& bind,
-                                     const CacheFrames& cache, const RunOptions& o, size_t k,
-                                     const std::string& out_path, CacheSlot slot,
-                                     ReportFrame* record) {
+FrameOutcome run_cache_frame(const BindSetup& setup, const MeshFile& bind, const CacheFrames& cache,
+                             const RunOptions& o, size_t k, const std::string& out_path,
+                             CacheSlot slot, ReportFrame* record) {
   const std::string label =
       cache.cache->path() + " sample " + std::to_string(k) + " (" + cache.names[k] + ")";
   auto t0 = Clock::now();
@@ -134,10 +139,9 @@ FrameOutcome run_cache_frame(const BindSetup& setup, const MeshFile& bind,
 }
 
 // Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB, or into a cache.
-FrameOutcome run_rig_frame(const BindSetup& setup, const MeshFile& character,
-                                   const RigClip& clip, const RunOptions& o, size_t k,
-                                   const std::string& out_path, CacheSlot slot,
-                                   ReportFrame* record) {
+FrameOutcome run_rig_frame(const BindSetup& setup, const MeshFile& character, const RigClip& clip,
+                           const RunOptions& o, size_t k, const std::string& out_path,
+                           CacheSlot slot, ReportFrame* record) {
   const std::string label = clip.names[k] + " (t = " + log_number(clip.times[k]) + " s)";
   auto t0 = Clock::now();
   const MeshFile frame = rig_frame(character, clip, k);

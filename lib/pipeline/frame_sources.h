@@ -61,7 +61,7 @@ struct FrameOutcome {
 /// it. \throw Error naming the frame; nothing of it is written then. With --require-converged a
 /// patch that did not converge is such an error (Numeric), naming the patch and its stop.
 FrameOutcome run_source_frame(const BindSetup& setup, const MeshFile& bind,
-                                      const FrameSource& source, const RunOptions& o, std::size_t i,
-                                      CacheSlot slot, ReportFrame* record);
+                              const FrameSource& source, const RunOptions& o, std::size_t i,
+                              CacheSlot slot, ReportFrame* record);
 
 }  // namespace skinslide

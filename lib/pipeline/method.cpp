@@ -120,14 +120,13 @@ std::string frame_summary(const MethodSetup& method, const std::vector<Patch>& p
 
 void mark_at_rest(MethodReport& report) {
   if (auto* elastic = std::get_if<ElasticReport>(&report)) {
-    elastic->stop = "at rest";
-    elastic->converged = true;
+    elastic->stop = stop_name(ElasticStop::AtRest);
   }
 }
 
 std::string convergence_fault(const MethodReport& report) {
   const auto* elastic = std::get_if<ElasticReport>(&report);
-  return elastic && !elastic->converged ? convergence_text(*elastic) : std::string();
+  return elastic && !converged(*elastic) ? convergence_text(*elastic) : std::string();
 }
 
 std::string patch_summary(const MethodSetup& method, std::size_t p, const MethodReport& report) {

@@ -145,8 +145,8 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
                              (o.threads == 0 ? " (-j 0: the cores this task may use)" : "")});
   if (events.frames_begin) events.frames_begin(count);
   std::atomic<size_t> not_converged{0};
-  std::vector<std::unique_ptr<Error>> errors = slide_frames(
-      o, events, setup, bind, source, cache_out.get(), threads, report, not_converged);
+  std::vector<std::unique_ptr<Error>> errors =
+      slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report, not_converged);
   if (events.frames_end) events.frames_end();
   // A cache has no holes: it appears only when every chosen frame is in it.
   const bool all_written =

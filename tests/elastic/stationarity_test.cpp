@@ -26,12 +26,17 @@ Positions3 raised(const Fan& fan, double h) {
   return frame;
 }
 
-double at_centre(const Fan& fan, const Positions3& frame, const Vec3& g) {
-  const FrameSurface surface = frame_surface(fan.chart, frame);
-  return one_sided_descent(surface, 0, at_node(fan.chart, 0), g);
+// The steepest one-sided descent's rate, per unit of 3D length.
+double rate(const FrameSurface& surface, Index node, const ChartPoint& where, const Vec3& g) {
+  return steepest_descent(surface, node, where, g).norm();
 }
 
-TEST(OneSidedDescent, AtAPyramidsApexExactly) {
+double at_centre(const Fan& fan, const Positions3& frame, const Vec3& g) {
+  const FrameSurface surface = frame_surface(fan.chart, frame);
+  return rate(surface, 0, at_node(fan.chart, 0), g);
+}
+
+TEST(SteepestDescent, AtAPyramidsApexExactly) {
   const Fan fan;
   const Positions3 pyramid = raised(fan, 1);
   // Pulled down (the energy grows upwards): straight down a face, whose plane x + y + z = 1 (and
@@ -46,21 +51,21 @@ TEST(OneSidedDescent, AtAPyramidsApexExactly) {
   EXPECT_NEAR(at_centre(fan, raised(fan, -1), Vec3(1, 0, 0)), std::sqrt(0.5), 1e-14);
 }
 
-TEST(OneSidedDescent, OnAPlaneItIsTheTangentGradientsLength) {
+TEST(SteepestDescent, OnAPlaneItIsTheTangentGradientsLength) {
   const Fan fan;
   const FrameSurface flat = frame_surface(fan.chart, fan.bind);
   const Vec3 g(3, 4, 12);  // |(3, 4)| = 5 in the plane z = 0
-  EXPECT_NEAR(one_sided_descent(flat, 0, at_node(fan.chart, 0), g), 5, 1e-14);
+  EXPECT_NEAR(rate(flat, 0, at_node(fan.chart, 0), g), 5, 1e-14);
   // Inside a triangle, on its edge, near its corner: the plane is one facet, the same 5.
   const Index t = 0;
   for (const std::array<double, 3>& w :
        {std::array<double, 3>{0.2, 0.3, 0.5}, {0.5, 0.5, 0}, {0.9995, 0.0002, 0.0003}})
-    EXPECT_NEAR(one_sided_descent(flat, -1, ChartPoint{t, w}, g), 5, 1e-14);
+    EXPECT_NEAR(rate(flat, -1, ChartPoint{t, w}, g), 5, 1e-14);
   // A gradient normal to the surface: stationary.
-  EXPECT_EQ(one_sided_descent(flat, -1, ChartPoint{t, {0.2, 0.3, 0.5}}, Vec3(0, 0, 7)), 0);
+  EXPECT_EQ(rate(flat, -1, ChartPoint{t, {0.2, 0.3, 0.5}}, Vec3(0, 0, 7)), 0);
 }
 
-TEST(OneSidedDescent, OnARidgeEdgeBothSidesCount) {
+TEST(SteepestDescent, OnARidgeEdgeBothSidesCount) {
   const Fan fan;
   // A roof: the centre and (0, +-1) raised to 1, the ridge along y; the point halfway along the
   // edge 0-2 of triangles 0 and 1 is on the ridge.
@@ -69,28 +74,28 @@ TEST(OneSidedDescent, OnARidgeEdgeBothSidesCount) {
   const FrameSurface surface = frame_surface(fan.chart, roof);
   const ChartPoint mid{0, {0.5, 0, 0.5}};
   // Pulled up: both slopes go down, neither helps; along the ridge g is normal: stationary.
-  EXPECT_EQ(one_sided_descent(surface, -1, mid, Vec3(0, 0, -1)), 0);
+  EXPECT_EQ(rate(surface, -1, mid, Vec3(0, 0, -1)), 0);
   // Pulled down: down either slope, (+-1, 0, -1) / sqrt 2.
-  EXPECT_NEAR(one_sided_descent(surface, -1, mid, Vec3(0, 0, 1)), std::sqrt(0.5), 1e-14);
+  EXPECT_NEAR(rate(surface, -1, mid, Vec3(0, 0, 1)), std::sqrt(0.5), 1e-14);
   // Pulled along +x: inside triangle 0 (z = 1 - x) it climbs back towards the ridge, sqrt 1/2.
   // On the edge triangle 0 offers only its own half (x >= 0), where nothing goes down: the
   // descent is triangle 1's (z = 1 + x), down its slope, sqrt 1/2 again, found only across the
   // edge. Within a thousandth of the edge (kOnEdge) the point is on it.
-  EXPECT_NEAR(one_sided_descent(surface, -1, ChartPoint{0, {0.4, 0.2, 0.4}}, Vec3(1, 0, 0)),
-              std::sqrt(0.5), 1e-14);
+  EXPECT_NEAR(rate(surface, -1, ChartPoint{0, {0.4, 0.2, 0.4}}, Vec3(1, 0, 0)), std::sqrt(0.5),
+              1e-14);
   for (const double off : {0.0, 0.0005})
-    EXPECT_NEAR(one_sided_descent(surface, -1, ChartPoint{0, {0.5, off, 0.5 - off}}, Vec3(1, 0, 0)),
+    EXPECT_NEAR(rate(surface, -1, ChartPoint{0, {0.5, off, 0.5 - off}}, Vec3(1, 0, 0)),
                 std::sqrt(0.5), 1e-14);
   // Pulled along +y on the edge (along the level ridge): g is along the edge, straight back.
-  EXPECT_NEAR(one_sided_descent(surface, -1, mid, Vec3(0, 1, 0)), 1, 1e-14);
+  EXPECT_NEAR(rate(surface, -1, mid, Vec3(0, 1, 0)), 1, 1e-14);
 }
 
-TEST(OneSidedDescent, AFlatFacetIsNotLeftThrough) {
+TEST(SteepestDescent, AFlatFacetIsNotLeftThrough) {
   const Fan fan;
   Positions3 crushed = fan.bind;
   crushed[1] = crushed[2] = crushed[0];  // triangle 0 has no area
   const FrameSurface surface = frame_surface(fan.chart, crushed);
-  EXPECT_EQ(one_sided_descent(surface, -1, ChartPoint{0, {0.2, 0.3, 0.5}}, Vec3(1, 2, 3)), 0);
+  EXPECT_EQ(rate(surface, -1, ChartPoint{0, {0.2, 0.3, 0.5}}, Vec3(1, 2, 3)), 0);
 }
 
 // A bent fan of two rings: the measure and the stop of relax_patch agree.
