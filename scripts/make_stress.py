@@ -74,8 +74,8 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_swings import (Joint, band_patch, makehuman, parse_off, read_cgal_off,  # noqa: E402
-                         rotation, weights, write_obj)
+from make_swings import (Joint, band_patch, largest_component, makehuman, parse_off,  # noqa: E402
+                         read_cgal_off, rotation, weights, write_obj)
 
 BLENDER = os.environ.get("BLENDER", "blender")
 
@@ -281,31 +281,6 @@ def no_bowties(faces, ids):
         if not bad:
             return ids
         ids = largest_component(faces, [i for i in ids if i not in bad])
-
-
-def largest_component(faces, ids):
-    parent = {i: i for i in ids}
-
-    def find(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-    emap = {}
-    for i in ids:
-        f = faces[i]
-        for k in range(len(f)):
-            e = (min(f[k], f[(k + 1) % len(f)]), max(f[k], f[(k + 1) % len(f)]))
-            emap.setdefault(e, []).append(i)
-    for fs in emap.values():
-        for o in fs[1:]:
-            ra, rb = find(fs[0]), find(o)
-            if ra != rb:
-                parent[ra] = rb
-    comps = {}
-    for i in ids:
-        comps.setdefault(find(i), []).append(i)
-    return sorted(max(comps.values(), key=len))
 
 
 def dragon_body():

@@ -186,16 +186,8 @@ def weights(V, faces, jt):
     return w, limb, along
 
 
-def band_patch(V, faces, jt, limb, along):
-    """Faces whose every corner is within jt.patch of the joint along the bone and within
-    jt.radius of its line, in the edge-connected component of such vertices that holds the
-    limb vertex nearest the joint; then the largest edge-connected component of those faces."""
-    rel = V - jt.j
-    radial = np.linalg.norm(rel - along[:, None] * jt.d, axis=1)
-    near = (np.abs(along) <= jt.patch) & (radial < jt.radius)
-    start = int(np.argmin(np.where(limb & near, np.abs(along), np.inf)))
-    near = component_of(len(V), edges_of(faces), near, start)
-    ids = [i for i, f in enumerate(faces) if all(near[v] for v in f)]
+def largest_component(faces, ids):
+    """The largest edge-connected component of the faces `ids` (indices into `faces`), sorted."""
     parent = {i: i for i in ids}
 
     def find(x):
@@ -218,6 +210,19 @@ def band_patch(V, faces, jt, limb, along):
     for i in ids:
         comps.setdefault(find(i), []).append(i)
     return sorted(max(comps.values(), key=len))
+
+
+def band_patch(V, faces, jt, limb, along):
+    """Faces whose every corner is within jt.patch of the joint along the bone and within
+    jt.radius of its line, in the edge-connected component of such vertices that holds the
+    limb vertex nearest the joint; then the largest edge-connected component of those faces."""
+    rel = V - jt.j
+    radial = np.linalg.norm(rel - along[:, None] * jt.d, axis=1)
+    near = (np.abs(along) <= jt.patch) & (radial < jt.radius)
+    start = int(np.argmin(np.where(limb & near, np.abs(along), np.inf)))
+    near = component_of(len(V), edges_of(faces), near, start)
+    ids = [i for i, f in enumerate(faces) if all(near[v] for v in f)]
+    return largest_component(faces, ids)
 
 
 def pose(V, w, jt, t, n):
