@@ -51,6 +51,7 @@ REF = os.environ.get("QUALITY_REFERENCE", "/work/shared/reference")
 sys.path.insert(0, REF)
 from oracle import read_obj, read_patch  # noqa: E402
 import metrics  # noqa: E402
+from quality import free_vertices  # noqa: E402  (scripts/, the script's own folder)
 
 GAP_TARGET = 0.05   # issue 28: every frame within 5% of its converged reference
 
@@ -158,17 +159,6 @@ def file_bytes(path):
         return fh.read()
 
 
-def free_count(faces, ids):
-    cnt = {}
-    for i in ids:
-        f = faces[i]
-        for k in range(len(f)):
-            e = (min(f[k], f[(k + 1) % len(f)]), max(f[k], f[(k + 1) % len(f)]))
-            cnt[e] = cnt.get(e, 0) + 1
-    border = {v for e, c in cnt.items() if c == 1 for v in e}
-    return len({v for i in ids for v in faces[i]} - border)
-
-
 def cmd_reference(a):
     Vb, faces, _ = read_obj(a.bind)
     ids = read_patch(a.patch, len(faces))
@@ -177,7 +167,7 @@ def cmd_reference(a):
     base = sha(file_bytes(a.bind), file_bytes(a.patch))
     fkeys = {n: sha(base, file_bytes(os.path.join(a.frames, n))) for n in names}
     os.makedirs(a.cache, exist_ok=True)
-    nfree = free_count(faces, ids)
+    nfree = len(free_vertices(faces, ids))
     frame_E = {n: en(*(2 * [read_obj(os.path.join(a.frames, n))[0]])) for n in names}
 
     def energy_of(out_dir, n):
