@@ -198,8 +198,10 @@ def run_case(seed, meshes, ctx, folder):
 
 
 def _same_as_command(case):
-    """Cases whose every input the command line takes as the module did."""
-    return (case.mode == "files" and case.mangle is None and case.frame_form != "float32" and
+    """Cases whose every input the command line takes as the module did (not --no-slide: the
+    command then copies the frames, and the module has no such mode)."""
+    return (case.mode == "files" and not case.no_slide and case.mangle is None and
+            case.frame_form != "float32" and
             case.usage_error is None and case.clash is None and
             all(f.format == "obj" and not f.bad for f in case.frames) and case.frames and
             expected(case)[0] is None)
