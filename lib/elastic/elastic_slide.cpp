@@ -16,9 +16,8 @@ int turned_triangles(const Patch& patch, const Positions3& frame, const Position
   int turned = 0;
   for (const Triangle& t : patch.triangles) {
     const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
-    if (nf.isZero(0)) continue;
     const Vec3 ns = (slid[t[1]] - slid[t[0]]).cross(slid[t[2]] - slid[t[0]]);
-    turned += ns.dot(nf) <= 0 ? 1 : 0;
+    turned += turned_against(ns, nf) ? 1 : 0;
   }
   return turned;
 }

@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 
+#include "mesh/measures.h"
+
 namespace skinslide {
 namespace {
 
@@ -41,10 +43,8 @@ bool folds(const LineSearchPatch& patch, const SlideState& s, Index t) {
   const Triangle& tri = patch.surface.chart.triangles[t];
   const Vec2& a = s.node_uv[tri[0]];
   if (!(cross2(s.node_uv[tri[1]] - a, s.node_uv[tri[2]] - a) > 0)) return true;
-  const Vec3& nf = patch.surface.normals[t];
-  if (nf.isZero(0)) return false;
   const Vec3 n = (s.x[tri[1]] - s.x[tri[0]]).cross(s.x[tri[2]] - s.x[tri[0]]);
-  return !(n.dot(nf) > 0);
+  return turned_against(n, patch.surface.normals[t]);
 }
 
 // Trial state: every moving vertex a share of its step along; `share` per movable vertex.

@@ -33,4 +33,12 @@ int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triang
   return count_folds(net, triangles).flipped;
 }
 
+bool turned_against(const Vec3& slid, const Vec3& frame) {
+  const double frame_size = frame.cwiseAbs().maxCoeff();
+  if (frame_size == 0) return false;
+  const double slid_size = slid.cwiseAbs().maxCoeff();
+  if (!(slid_size > 0)) return true;
+  return !((slid / slid_size).dot(frame / frame_size) > 0);
+}
+
 }  // namespace skinslide

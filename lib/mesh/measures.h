@@ -25,4 +25,11 @@ Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles)
 /// Triangles of `net` whose signed area is zero or of the minority sign (folds of the net).
 int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triangles);
 
+/// True when a slid triangle's normal `slid` does not point along its frame triangle's normal
+/// `frame` (zero, or against it); false when the frame triangle has no area (`frame` zero).
+/// Both are scaled to a largest component of 1 first: the product of two normals of triangles
+/// near 1e-160 in size underflows to 0, which would read a triangle left exactly where the frame
+/// has it as turned.
+bool turned_against(const Vec3& slid, const Vec3& frame);
+
 }  // namespace skinslide

@@ -119,8 +119,12 @@ std::string frame_summary(const MethodSetup& method, const std::vector<Patch>& p
 }
 
 void mark_at_rest(MethodReport& report) {
+  // The figures describe what is written: the frame itself (the work done stays counted).
   if (auto* elastic = std::get_if<ElasticReport>(&report)) {
     elastic->stop = stop_name(ElasticStop::AtRest);
+    elastic->energy_after = elastic->energy_before;
+    elastic->slid_flips = 0;
+    elastic->gain_left = 0;
   }
 }
 

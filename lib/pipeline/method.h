@@ -108,7 +108,8 @@ std::string frame_summary(const MethodSetup& method, const std::vector<Patch>& p
 std::string patch_summary(const MethodSetup& method, std::size_t p, const MethodReport& report);
 
 /// A patch found at rest after its slide (its frame is the bind to float32 precision: the slide
-/// is dropped): the method's report says so too (elastic: stop "at rest").
+/// is dropped): the method's report says so too (elastic: stop "at rest", no energy gained,
+/// no flips, no gain left, as for a frame the relaxation itself finds at rest).
 void mark_at_rest(MethodReport& report);
 
 /// Why a patch's slide in a frame did not converge ("small gain, first-order gain left 3.1%"),

@@ -1,5 +1,7 @@
 #include "mesh/measures.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace skinslide {
@@ -28,6 +30,20 @@ TEST(Measures, FlippedTrianglesCountsTheMinorityOrientation) {
   EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {1, 3, 2}}), 0);
   EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {1, 3, 2}, {0, 2, 1}}), 1);
   EXPECT_EQ(flipped_triangles(x, {{0, 1, 2}, {0, 1, 1}}), 1);  // zero area counts
+}
+
+TEST(Measures, TurnedAgainstReadsTheNormalsDirectionWhateverTheirSize) {
+  // A bind with rows of zero-area triangles had one whose normal is 2.5e-311 (a denormal): its
+  // own product with itself underflowed to 0 and read a triangle left in place as turned.
+  const Vec3 tiny{-0.0, 2.5e-311, 0.0};
+  EXPECT_EQ(tiny.dot(tiny), 0.0);
+  EXPECT_FALSE(turned_against(tiny, tiny));
+  EXPECT_TRUE(turned_against(-tiny, tiny));
+  EXPECT_FALSE(turned_against({0, 0, 1}, {0, 1e-300, 1e-300}));
+  EXPECT_TRUE(turned_against({0, 0, 0}, {0, 0, 1}));           // collapsed: not along it
+  EXPECT_TRUE(turned_against({1, 0, 0}, {0, 0, 1}));           // at a right angle
+  EXPECT_FALSE(turned_against({0, 0, -1}, {0, 0, 0}));         // no frame area: nothing to turn from
+  EXPECT_TRUE(turned_against({NAN, 0, 1}, {0, 0, 1}));
 }
 
 }  // namespace

@@ -1145,6 +1145,11 @@ def _check_report(case, folder, pairs):
                                 f"frame says {at_rest(case, ci, pair.frame)}")
             if fp.get("at_rest"):
                 want_moved = 0
+                # The figures describe what was written: the frame itself.
+                if fp.get("flips", 0) != 0 or fp.get("energy_after") != fp.get("energy_before"):
+                    problems.append(f"report: frame {k} patch {ci} at rest, yet flips "
+                                    f"{fp.get('flips')} and energy {fp.get('energy_before')} -> "
+                                    f"{fp.get('energy_after')}")
             if fp.get("moved") != want_moved:
                 problems.append(f"report: frame {k} patch {ci} moved {fp.get('moved')}, expected "
                                 f"{want_moved} (free {len(free)}, weight > 0: {len(moving)})")
