@@ -197,7 +197,11 @@ def build(seed, meshes, ctx):
             q = [loop[i] for i in idx]
             case.corners.append(q)
             # a loop two patches share serves both, and they walk it in opposite directions
+            # (a patch with nothing free is skipped, never set up: it does not walk it)
+            pins = set(case.pins or [])
             for other in case.comps:
+                if not [v for v in other.interior if v not in pins]:
+                    continue
                 for lp in other.loops:
                     if all(v in lp for v in q):
                         at = [lp.index(v) for v in q]
