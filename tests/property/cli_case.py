@@ -1022,8 +1022,19 @@ def _check_unchanged(case, folder):
     elif not case.cache_obj:
         outs = sorted((folder / "out").iterdir())
         src = folder / "frames" / f"shot.{case.mode}"
-        if len(outs) != 1 or outs[0].read_bytes() != src.read_bytes():
-            problems.append(f"--no-slide: the cache {[p.name for p in outs]} is not the input's bytes")
+        if not case.frames_spec:
+            if len(outs) != 1 or outs[0].read_bytes() != src.read_bytes():
+                problems.append(f"--no-slide: the cache {[p.name for p in outs]} is not the "
+                                f"input's bytes")
+        elif len(outs) != 1:
+            problems.append(f"--no-slide: {len(outs)} caches written: {[p.name for p in outs]}")
+        else:
+            # --frames: the selected samples, each the input's bytes
+            reader = read_pc2 if case.mode == "pc2" else read_mdd
+            got, given = reader(outs[0])["samples"], reader(src)["samples"]
+            chosen = [case.frames.index(f) for f in _selected_frames(case)]
+            if len(got) != len(chosen) or got.tobytes() != given[chosen].tobytes():
+                problems.append(f"--no-slide: {outs[0].name} is not the input's samples {chosen}")
     return problems
 
 
