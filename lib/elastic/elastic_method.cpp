@@ -48,6 +48,7 @@ Figures report_figures(const ElasticReport& r) {
           {"iterations", static_cast<long long>(r.iterations)},
           {"solves", static_cast<long long>(r.solves)},
           {"solve_iterations", static_cast<long long>(r.solve_iterations)},
+          {"escalations", static_cast<long long>(r.escalations)},
           {"stop", r.stop.empty() ? std::string("skipped") : r.stop},
           {"converged", converged(r)},
           {"first_order_gain", r.gain_left},

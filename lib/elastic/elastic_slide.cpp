@@ -52,6 +52,7 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   report.iterations = relaxed.iterations;
   report.solves = relaxed.solves;
   report.solve_iterations = relaxed.solver_iterations;
+  report.escalations = relaxed.escalations;
   report.held = relaxed.held;
   report.gain_left = relaxed.gain_left;
   report.stop = stop_name(relaxed.stop);

@@ -33,6 +33,7 @@ struct ElasticReport {
   int iterations = 0;        ///< steps taken
   int solves = 0;            ///< step directions solved (a step's first, and around holds)
   int solve_iterations = 0;  ///< conjugate-gradient iterations of those solves
+  int escalations = 0;       ///< times their iteration budget was raised (relax.h, rule 10)
   int held = 0;              ///< vertex-steps held in place to keep a step a descent
   int slid_flips = 0;        ///< slid triangles whose normal turns against the frame's (want 0)
   double gain_left = 0;      ///< the first-order gain left at the slid patch (relax.h, rule 10)

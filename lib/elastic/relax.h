@@ -86,6 +86,9 @@ struct ElasticResult {
   int iterations = 0;         ///< steps taken, over all rounds
   int solves = 0;             ///< step directions solved (a step's first, and with holds)
   int solver_iterations = 0;  ///< conjugate-gradient iterations over all solves
+  /// Times the directions' iteration budget was raised for a frame the measure found short of
+  /// stationary (rule 10).
+  int escalations = 0;
   /// Vertex-steps held in place: their energy would rise, a triangle of theirs would fold, or
   /// they were held for the step that won.
   int held = 0;

@@ -177,6 +177,8 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
     }
     ++out.iterations;
   }
+  out.capped = out.iterations >= solve.max_iterations && dot(r, r) > r_stop;
+  out.residual = std::sqrt(dot(r, r)) / r0;
   for (Index i = 0; i < m; ++i) {
     out.d[i] = is_held(i) ? Vec2::Zero() : Vec2(frames[i].S_inverse * x[i]);
     if (!out.d[i].allFinite()) out.finite = false;

@@ -236,5 +236,61 @@ TEST(ElasticSlide, EnergyOfTheBindIsZeroAndOfAStretchIsItsSquaredStrain) {
   EXPECT_NEAR(elastic_energy(e, local, 1.0), 18 * 0.5 * 0.04, 1e-12);
 }
 
+// A 64 x 64 grid wrapped over most of a ball, stretched towards the rim (the tangent planes
+// turn all across, which the bind's factor does not see); `roughness`: every vertex that much
+// off the ball at random, so that neighbouring planes turn too.
+Positions3 on_a_ball(const PolyMesh& mesh, const Patch& patch, int n, double roughness) {
+  Positions3 frame(patch.vertices.size());
+  std::mt19937 random(30);
+  std::uniform_real_distribution<double> bump(-roughness, roughness);
+  const double radius = n / 3.0;
+  for (size_t i = 0; i < frame.size(); ++i) {
+    const Vec3& b = mesh.positions[patch.vertices[i]];
+    const Vec2 c(b.x() - n / 2.0, b.y() - n / 2.0);
+    const double r = c.norm(), phi = std::atan2(c.y(), c.x());
+    const double theta = r / radius * (1 + 0.3 * r / n);
+    const Vec3 out(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
+    frame[i] = (radius + bump(random)) * out;
+  }
+  return frame;
+}
+
+// Rule 10's escalation: a frame the measure finds short of stationary, whose directions went
+// unsolved at their budget of 8 iterations, is relaxed again with 4x (then 16x) the budget, from
+// where the first pass ended; a frame found stationary, or whose directions were nearly solved,
+// is not.
+TEST(ElasticRelax, AFrameShortOfStationaryIsRelaxedAgainWithALargerBudget) {
+  const int n = 64;
+  const PolyMesh mesh = test::quad_grid(n, n);
+  const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
+  const ElasticSetup& e = *test::elastic(setup).patches[0];
+  const Positions3 rough = on_a_ball(mesh, setup.patches[0], n, 0.4);
+  ElasticOptions lenient;
+  lenient.convergence = 1.0;
+  const ElasticResult first = relax_patch(e, rough, lenient);
+  EXPECT_EQ(first.stop, ElasticStop::Converged);
+  EXPECT_EQ(first.escalations, 0);
+  EXPECT_LE(first.solver_iterations, 8 * first.solves);
+  EXPECT_GT(first.solver_iterations, 7 * first.solves) << "the directions reach their budget";
+
+  ElasticOptions strict;
+  strict.convergence = 0.0;
+  const ElasticResult escalated = relax_patch(e, rough, strict);
+  EXPECT_NE(escalated.stop, ElasticStop::Converged);
+  EXPECT_GE(escalated.escalations, 1);
+  EXPECT_LE(escalated.escalations, 2);  // 8 -> 32 -> 128, the largest
+  EXPECT_GT(escalated.solver_iterations, 8 * escalated.solves);
+  EXPECT_GT(escalated.iterations, first.iterations);
+  // The first pass is the same: the escalated one only goes on from where it ended.
+  EXPECT_LT(escalated.energy_after, first.energy_after);
+  EXPECT_LT(escalated.gain_left, first.gain_left);
+
+  // On the smooth ball the directions are nearly solved at 8: nothing to escalate.
+  const ElasticResult smooth = relax_patch(e, on_a_ball(mesh, setup.patches[0], n, 0.0), strict);
+  EXPECT_NE(smooth.stop, ElasticStop::Converged);
+  EXPECT_EQ(smooth.escalations, 0);
+  EXPECT_LE(smooth.solver_iterations, 8 * smooth.solves);
+}
+
 }  // namespace
 }  // namespace skinslide
