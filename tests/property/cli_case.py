@@ -100,6 +100,11 @@ def build(seed, meshes, ctx):
     # --- selection and what skinslide must make of it
     case.selections, sel_notes = random_selections(rng, mesh, cap)
     case.notes += [f"patch file {i}: {n}" for i, n in enumerate(sel_notes)]
+    # A whole closed-ish component's chart can squeeze triangles below double precision's area
+    # (README Limits: cut it into patches): elastic may refuse it, exit 5, naming the chart.
+    case.whole_component = any(n.startswith(("a whole component", "the whole mesh")) or
+                               "+ a whole component" in n or "+ the whole mesh" in n
+                               for n in sel_notes)
     case.refusal = None
     case.comps = []
     case.empty_file = any(not s for s in case.selections)
@@ -581,6 +586,8 @@ def expected_codes(case):
         return {0, 3, 5}, "paper on degenerate geometry (a singular or zero-length net)"
     if case.method == "elastic" and degenerate_bind:
         return {0, 5}, "elastic on a degenerate bind (a chart that cannot be built)"
+    if case.method == "elastic" and case.whole_component:
+        return {0, 5}, "elastic on a whole component (a chart that may squeeze triangles to nothing)"
     if any(getattr(f, "weld_changed", False) for f in _selected_frames(case)):
         return {3}, "a glTF frame whose float32 positions weld differently from the bind"
     if getattr(case, "require_converged", False):
@@ -626,8 +633,11 @@ def check(case, folder, r, ref=None):
     if tmp:
         failures.append(f"temporaries left behind: {tmp[:5]}")
     if r.code != 0:
-        if r.code in (2,) or (r.code == 3 and (case.refusal or case.usage_error or
-                                                paper_short_outer(case) is not False)):
+        # --no-slide checks no patch: a refusal of the patches does not apply, and a broken
+        # frame under --keep-going leaves the good frames written
+        refused = r.code == 3 and not case.no_slide and (
+            case.refusal or case.usage_error or paper_short_outer(case) is not False)
+        if r.code == 2 or refused:
             written = [p for d in ("out", "dump", "preview") for p in (folder / d).rglob("*")
                        if p.is_file()] + ([folder / "report.json"]
                                            if (folder / "report.json").exists() else [])
