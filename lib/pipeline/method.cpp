@@ -11,6 +11,9 @@ template <class... F>
 struct Each : F... {
   using F::operator()...;
 };
+// Spelled out: clang before 17 deduces no aggregate's template arguments (the fuzz build).
+template <class... F>
+Each(F...) -> Each<F...>;
 
 }  // namespace
 
