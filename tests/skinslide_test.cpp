@@ -105,8 +105,7 @@ TEST(Api, AVertexLeftWhereTheFrameHasItKeepsTheFramesBits) {
     slide(setup, frame, out);
     int kept = 0;
     for (size_t v = 0; v < frame.size(); v += 3) {
-      if (out[v] != frame[v] || out[v + 1] != frame[v + 1] || out[v + 2] != frame[v + 2])
-        continue;
+      if (out[v] != frame[v] || out[v + 1] != frame[v + 1] || out[v + 2] != frame[v + 2]) continue;
       ++kept;
       for (size_t k = v; k < v + 3; ++k)
         EXPECT_EQ(std::signbit(out[k]), std::signbit(frame[k])) << "vertex " << v / 3;

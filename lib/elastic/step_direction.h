@@ -67,9 +67,9 @@ struct DirectionWork {
 };
 
 struct StepDirection {
-  Positions2 d;        ///< per movable vertex, its chart step
-  int iterations = 0;  ///< conjugate-gradient iterations
-  bool finite = true;  ///< false when the solve met a non-finite number (d is then zero)
+  Positions2 d;         ///< per movable vertex, its chart step
+  int iterations = 0;   ///< conjugate-gradient iterations
+  bool finite = true;   ///< false when the solve met a non-finite number (d is then zero)
   bool capped = false;  ///< stopped at its iteration budget, short of its tolerance
   double residual = 0;  ///< |r| / |r_0| where it stopped (0 when it had nothing to solve)
 };

@@ -249,7 +249,8 @@ Positions3 on_a_ball(const PolyMesh& mesh, const Patch& patch, int n, double rou
     const Vec2 c(b.x() - n / 2.0, b.y() - n / 2.0);
     const double r = c.norm(), phi = std::atan2(c.y(), c.x());
     const double theta = r / radius * (1 + 0.3 * r / n);
-    const Vec3 out(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
+    const Vec3 out(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                   -std::cos(theta));
     frame[i] = (radius + bump(random)) * out;
   }
   return frame;

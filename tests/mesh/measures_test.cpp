@@ -40,9 +40,9 @@ TEST(Measures, TurnedAgainstReadsTheNormalsDirectionWhateverTheirSize) {
   EXPECT_FALSE(turned_against(tiny, tiny));
   EXPECT_TRUE(turned_against(-tiny, tiny));
   EXPECT_FALSE(turned_against({0, 0, 1}, {0, 1e-300, 1e-300}));
-  EXPECT_TRUE(turned_against({0, 0, 0}, {0, 0, 1}));           // collapsed: not along it
-  EXPECT_TRUE(turned_against({1, 0, 0}, {0, 0, 1}));           // at a right angle
-  EXPECT_FALSE(turned_against({0, 0, -1}, {0, 0, 0}));         // no frame area: nothing to turn from
+  EXPECT_TRUE(turned_against({0, 0, 0}, {0, 0, 1}));    // collapsed: not along it
+  EXPECT_TRUE(turned_against({1, 0, 0}, {0, 0, 1}));    // at a right angle
+  EXPECT_FALSE(turned_against({0, 0, -1}, {0, 0, 0}));  // no frame area: nothing to turn from
   EXPECT_TRUE(turned_against({NAN, 0, 1}, {0, 0, 1}));
 }
 

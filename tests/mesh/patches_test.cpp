@@ -126,7 +126,8 @@ TEST(Patches, RejectsAComponentWithAHandle) {
     }
   const auto id = [&](int i, int j) { return static_cast<Index>((i % n) * m + j % m); };
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) torus.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    for (int j = 0; j < m; ++j)
+      torus.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
   std::vector<Index> all_but_one;
   for (Index f = 1; f < torus.face_count(); ++f) all_but_one.push_back(f);
   const std::string msg = error_of(torus, {all_but_one});
