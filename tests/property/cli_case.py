@@ -1215,17 +1215,27 @@ def _stems(case, pairs):
     return None
 
 
-def _check_dumps(case, folder, pairs):
-    problems = []
-    d = folder / "dump"
-    live = [ci for ci in range(len(case.comps)) if _expected_patch_moves(case, ci)[0]]
+def _written(case, folder, pairs, option, names):
+    """The files `option` (--dump, --preview) wrote into its folder, and a problem when they are
+    not `names(stems, live)`: the frames' file stems and the patches with a free vertex (file
+    frames only: a cache's or an animation's frames are named otherwise)."""
+    d = folder / option.lstrip("-")
     files = sorted(p.name for p in d.iterdir()) if d.exists() else []
+    live = [ci for ci in range(len(case.comps)) if _expected_patch_moves(case, ci)[0]]
     stems = _stems(case, pairs)
+    problems = []
     if stems is not None:
-        want = sorted(f"{s}.patch{ci:03d}.{k}.exr" for s in ["bind"] + stems for ci in live
-                      for k in ("id", "geom"))
+        want = sorted(names(stems, live))
         if files != want:
-            problems.append(f"--dump wrote {files[:6]}, expected {want[:6]}")
+            problems.append(f"{option} wrote {files[:6]}, expected {want[:6]}")
+    return d, files, problems
+
+
+def _check_dumps(case, folder, pairs):
+    d, files, problems = _written(
+        case, folder, pairs, "--dump",
+        lambda stems, live: (f"{s}.patch{ci:03d}.{k}.exr" for s in ["bind"] + stems
+                             for ci in live for k in ("id", "geom")))
     size = _lookup_size(case)
     for name in files:
         try:
@@ -1248,15 +1258,9 @@ def _lookup_size(case):
 
 
 def _check_previews(case, folder, pairs):
-    problems = []
-    d = folder / "preview"
-    live = [ci for ci in range(len(case.comps)) if _expected_patch_moves(case, ci)[0]]
-    files = sorted(p.name for p in d.iterdir()) if d.exists() else []
-    stems = _stems(case, pairs)
-    if stems is not None:
-        want = sorted(f"{s}.patch{ci:03d}.png" for s in stems for ci in live)
-        if files != want:
-            problems.append(f"--preview wrote {files[:6]}, expected {want[:6]}")
+    d, files, problems = _written(
+        case, folder, pairs, "--preview",
+        lambda stems, live: (f"{s}.patch{ci:03d}.png" for s in stems for ci in live))
     for name in files:
         try:
             img = read_png(d / name)
