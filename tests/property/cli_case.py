@@ -599,9 +599,13 @@ def unconverged_problems(case, stderr):
     """--require-converged's exit 5: each error line names the frame and the patch."""
     if not getattr(case, "require_converged", False):
         return []
-    lines = [ln for ln in stderr.splitlines() if "skinslide: error: " in ln]
+    # A cache with failed samples is not written at all: that line names the cache, the
+    # samples' own lines above it name frame and patch.
+    errors = [ln for ln in stderr.splitlines() if "skinslide: error: " in ln]
+    lines = [ln for ln in errors if "samples failed, and a cache cannot have holes" not in ln]
     if not lines:
-        return []  # process_failures says so
+        # process_failures says so when nothing is said at all
+        return [f"a cache refused with no sample named: {errors[0]!r}"] if errors else []
     names = [f.name for f in _selected_frames(case)] if case.mode == "files" else []
     bad = [ln for ln in lines if not re.search(r"\bpatch(es)? \d", ln) or
            (names and not any(n in ln for n in names))]
