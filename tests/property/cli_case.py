@@ -637,10 +637,13 @@ def check(case, folder, r, ref=None):
     if tmp:
         failures.append(f"temporaries left behind: {tmp[:5]}")
     if r.code != 0:
-        # --no-slide checks no patch: a refusal of the patches does not apply, and a broken
-        # frame under --keep-going leaves the good frames written
-        refused = r.code == 3 and not case.no_slide and (
-            case.refusal or case.usage_error or paper_short_outer(case) is not False)
+        # --no-slide checks no patch but reads every patch file: a refusal of the patches does
+        # not apply, an empty file does (before any frame), and a broken frame under
+        # --keep-going leaves the good frames written
+        refused = r.code == 3 and (
+            (case.no_slide and case.empty_file) or
+            (not case.no_slide and
+             (case.refusal or case.usage_error or paper_short_outer(case) is not False)))
         if r.code == 2 or refused:
             written = [p for d in ("out", "dump", "preview") for p in (folder / d).rglob("*")
                        if p.is_file()] + ([folder / "report.json"]
