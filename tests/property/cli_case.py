@@ -1154,10 +1154,13 @@ def _check_report(case, folder, pairs):
                 want_moved = len(moving) if free else 0
                 if stop_problem(fp.get("stop")):
                     problems.append(f"report: frame {k} patch {ci} {stop_problem(fp.get('stop'))}")
+                # lib/elastic/README.md rule 10: an escalated pass runs the rounds again
                 fits, steps = _elastic_limits(case)
-                if fp.get("iterations", 0) > fits * steps:
+                passes = 1 + fp.get("escalations", 0)
+                if fp.get("iterations", 0) > passes * fits * steps:
                     problems.append(f"report: frame {k} patch {ci} took {fp.get('iterations')} "
-                                    f"steps; --rotation-fits {fits} x --max-iterations {steps}")
+                                    f"steps; {passes} passes x --rotation-fits {fits} x "
+                                    f"--max-iterations {steps}")
                 # lib/elastic/README.md "Guarantees": no slid triangle turns against the frame's.
                 # Not kept where weights between 0 and 1 meet (U + w (u - U) is not
                 # line-searched; noted in README here): checked where every weight is 0 or 1.
