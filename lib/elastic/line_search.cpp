@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include "core/check.h"
 #include "mesh/measures.h"
 
 namespace skinslide {
@@ -132,19 +133,18 @@ double fold_root(const Chart& chart, const Positions2& node_uv, const Positions2
   return root;
 }
 
-double fold_bound(const LineSearchPatch& patch, const SlideState& state, const StepCandidate& step,
-                  std::vector<double>* roots) {
+void bound_folds(const LineSearchPatch& patch, const SlideState& state, StepCandidate& step) {
   const Chart& chart = patch.surface.chart;
   Positions2 node_d(chart.uv.size(), Vec2::Zero());
   for (size_t i = 0; i < step.d.size(); ++i) node_d[patch.movable[i]] = step.d[i];
-  if (roots) roots->assign(chart.patch_triangle_count, INFINITY);
-  double bound = INFINITY;
-  for (Index t : moving_triangles(patch, step)) {
-    const double root = fold_root(chart, state.node_uv, node_d, t);
-    bound = std::min(bound, root);
-    if (roots) (*roots)[t] = root;
+  step.moving = moving_triangles(patch, step);
+  step.fold_roots.resize(step.moving.size());
+  step.fold_bound = INFINITY;
+  for (size_t k = 0; k < step.moving.size(); ++k) {
+    step.fold_roots[k] = fold_root(chart, state.node_uv, node_d, step.moving[k]);
+    step.fold_bound = std::min(step.fold_bound, step.fold_roots[k]);
   }
-  return bound;
+  step.bounded = true;
 }
 
 LineSearchResult flip_free_line_search(const LineSearchPatch& patch, const SlideState& state,
@@ -154,10 +154,11 @@ LineSearchResult flip_free_line_search(const LineSearchPatch& patch, const Slide
   out.energy = energy;
   for (size_t c = 0; c < candidates.size(); ++c) {
     const StepCandidate& step = candidates[c];
-    const std::vector<Index> triangles = moving_triangles(patch, step);
+    SKINSLIDE_CHECK(step.bounded, "a step searched before its fold bound");
+    const std::vector<Index>& triangles = step.moving;
     if (triangles.empty()) continue;
     const size_t m = step.d.size();
-    double alpha = std::min(1.0, kFoldMargin * fold_bound(patch, state, step));
+    double alpha = std::min(1.0, kFoldMargin * step.fold_bound);
     Trial trial(patch, state, step);
     for (int halving = 0; halving < kMaxHalvings && alpha > 0; ++halving, alpha *= 0.5) {
       if (halving > 0) trial.reset();

@@ -3,6 +3,7 @@
 // or against the frame, and the energy falls.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -26,6 +27,13 @@ struct StepCandidate {
   Positions2 d;
   std::vector<Index> entered;
   std::vector<double> rise;
+  /// Set by bound_folds, once: the chart triangles with a moving corner, each one's fold root
+  /// along d (the smallest positive share of d at which it folds over; infinite when none) and
+  /// the smallest of them.
+  std::vector<Index> moving;
+  std::vector<double> fold_roots;
+  double fold_bound = INFINITY;
+  bool bounded = false;
 };
 
 /// The patch as the line search sees it.
@@ -48,15 +56,13 @@ struct LineSearchResult {
 /// area vanishes (Smith & Schaefer 2015), infinite when none.
 double fold_root(const Chart& chart, const Positions2& node_uv, const Positions2& node_d, Index t);
 
-/// The smallest positive share of `step` at which one of the slid triangles with a moving corner
-/// folds over in the chart (its signed area, a quadratic in the share, vanishes: Smith &
-/// Schaefer 2015); infinite when none does. With `roots`, every patch triangle's own (infinite
-/// for those that do not move).
-double fold_bound(const LineSearchPatch& patch, const SlideState& state, const StepCandidate& step,
-                  std::vector<double>* roots = nullptr);
+/// Sets `step`'s moving triangles, their fold roots from `state` (Smith & Schaefer 2015: a
+/// triangle's signed area is a quadratic in the share of the step) and its fold bound.
+void bound_folds(const LineSearchPatch& patch, const SlideState& state, StepCandidate& step);
 
-/// Searches along each candidate from `state` (energy `energy` there) and keeps the one reaching
-/// the lower energy. Along a candidate: alpha from min(1, 0.8 x its fold bound), halving at most
+/// Searches along each candidate (bounded from `state`: bound_folds) from `state` (energy
+/// `energy` there) and keeps the one reaching the lower energy. Along a candidate: alpha from
+/// min(1, 0.8 x its fold bound), halving at most
 /// 40 times; at each alpha the moving vertices go alpha of their step, then the moving corners of
 /// every slid triangle folded in the chart or turned against its frame triangle (where that has
 /// area) stay where they are, until none is; accepted when `energy_at` falls below `energy` and

@@ -142,12 +142,13 @@ class Relaxation {
     held_.assign(m_, 0);
     Index budget = std::max<Index>(kMinHoldBudget, m_ / kHoldBudgetShare);
     for (int round = 0; round < kMaxHoldRounds; ++round) {
-      if (!(fold_bound(patch_, state_, candidates_.back(), &roots_) < 1)) break;
+      const StepCandidate& step = candidates_.back();
+      if (!(step.fold_bound < 1)) break;
       more_ = held_;
       Index added = 0;
-      for (size_t t = 0; t < roots_.size(); ++t)
-        if (roots_[t] < 1)
-          for (Index v : setup_.chart.triangles[t])
+      for (size_t k = 0; k < step.moving.size(); ++k)
+        if (step.fold_roots[k] < 1)
+          for (Index v : setup_.chart.triangles[step.moving[k]])
             if (const Index i = setup_.movable_slot[v]; i >= 0 && !more_[i]) {
               more_[i] = 1;
               ++added;
@@ -185,6 +186,7 @@ class Relaxation {
           ++result_.held;
         }
     out.d = std::move(d);
+    bound_folds(patch_, state_, out);
     return out;
   }
 
@@ -207,7 +209,6 @@ class Relaxation {
   std::vector<TangentFrame> frames_;
   Positions3 g_movable_;
   std::vector<char> held_, more_;
-  std::vector<double> roots_;
   std::vector<StepCandidate> candidates_;
   DirectionWork work_;
 };

@@ -82,7 +82,9 @@ TEST(FlipFreeLineSearch, CutsAFoldingStepShortAndLowersTheEnergy) {
   step.d = {Vec2(0, -2)};
   step.entered = {0};
   step.rise = {2 * (1 - 0.5) * -2};  // dE/dy times the step's y
-  EXPECT_DOUBLE_EQ(fold_bound(patch, state, step), 0.5);
+  bound_folds(patch, state, step);
+  EXPECT_EQ(step.moving, std::vector<Index>{0}) << "the moving vertex has one triangle";
+  EXPECT_DOUBLE_EQ(step.fold_bound, 0.5);
   const LineSearchResult r =
       flip_free_line_search(patch, state, energy_at(state.x), {step}, energy_at);
   ASSERT_TRUE(r.accepted);
@@ -103,6 +105,7 @@ TEST(FlipFreeLineSearch, NoStepWhenEveryShareRaisesTheEnergy) {
   step.d = {Vec2(0.1, 0)};
   step.entered = {0};
   step.rise = {-1};
+  bound_folds(patch, state, step);
   const LineSearchResult r =
       flip_free_line_search(patch, state, energy_at(state.x), {step}, energy_at);
   EXPECT_FALSE(r.accepted);
