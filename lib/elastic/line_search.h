@@ -62,11 +62,11 @@ void bound_folds(const LineSearchPatch& patch, const SlideState& state, StepCand
 
 /// Searches along each candidate (bounded from `state`: bound_folds) from `state` (energy
 /// `energy` there) and keeps the one reaching the lower energy. Along a candidate: alpha from
-/// min(1, 0.8 x its fold bound), halving at most
-/// 40 times; at each alpha the moving vertices go alpha of their step, then the moving corners of
-/// every slid triangle folded in the chart or turned against its frame triangle (where that has
-/// area) stay where they are, until none is; accepted when `energy_at` falls below `energy` and
-/// by at least 1e-4 of the true first-order change of the step taken (Armijo).
+/// min(1, 0.8 x its fold bound), halving at most 40 times; at each alpha the moving vertices go
+/// alpha of their step, then the moving corners of every slid triangle folded in the chart or
+/// turned against its frame triangle (where that has area) stay where they are, until none is;
+/// accepted when `energy_at` falls below `energy` and by at least 1e-4 of the true first-order
+/// change of the step taken (Armijo).
 LineSearchResult flip_free_line_search(const LineSearchPatch& patch, const SlideState& state,
                                        double energy, const std::vector<StepCandidate>& candidates,
                                        const std::function<double(const Positions3&)>& energy_at);
