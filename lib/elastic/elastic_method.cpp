@@ -9,7 +9,7 @@ namespace skinslide {
 
 void set_up_patch(ElasticMethod& method, std::size_t p, Patch& patch, const Positions3& points,
                   const std::vector<double>& weight) {
-  method.patches[p] = elastic_patch_setup(patch, points, weight);
+  method.patches[p] = elastic_patch_setup(patch, points, weight, method.options.blend);
 }
 
 ElasticSlide slide_patch(const ElasticMethod& method, std::size_t p, const Patch& patch,

@@ -20,6 +20,11 @@ const OptionTable<ElasticOptions>& option_table<ElasticOptions>() {
        "Elastic: a frame has converged when the first-order gain left is at most this fraction "
        "of its energy; any other stop is logged as not converged",
        NumberOption<O, double>{&O::convergence, 0.0, 1.0}},
+      {"blend",
+       "Elastic: relax on the frame's facets blended smooth near their edges, each edge's blend "
+       "this share of its triangles' inradius wide (1: far less jitter in slow motion, up to 3x "
+       "the relax time); 0: on the facets. Slid vertices stay on the facets either way",
+       NumberOption<O, double>{&O::blend, 0.0, 2.0}},
   };
   return table;
 }

@@ -7,7 +7,7 @@
 
 namespace skinslide {
 
-/// --rotation-fits, --max-iterations, --tolerance, --convergence.
+/// --rotation-fits, --max-iterations, --tolerance, --convergence, --blend.
 template <>
 const OptionTable<ElasticOptions>& option_table<ElasticOptions>();
 

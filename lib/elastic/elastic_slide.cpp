@@ -25,12 +25,13 @@ int turned_triangles(const Patch& patch, const Positions3& frame, const Position
 }  // namespace
 
 std::shared_ptr<const ElasticSetup> elastic_patch_setup(Patch& patch, const Positions3& points,
-                                                        const std::vector<double>& weight) {
+                                                        const std::vector<double>& weight,
+                                                        double blend) {
   std::vector<Index> movable;
   for (Index v : patch.free_vertices)
     if (weight.empty() || weight[patch.vertices[v]] > 0) movable.push_back(v);
   auto setup = std::make_shared<const ElasticSetup>(
-      elastic_setup(points, patch.triangles, patch.loops, patch.outer_loop, movable));
+      elastic_setup(points, patch.triangles, patch.loops, patch.outer_loop, movable, blend));
   patch.bind_net.assign(
       setup->chart.uv.begin(),
       setup->chart.uv.begin() + static_cast<std::ptrdiff_t>(patch.vertices.size()));

@@ -22,9 +22,11 @@ namespace skinslide {
 /// vertices and `patch.bind_net_flips`.
 /// \param points bind positions of the patch's vertices (local ids)
 /// \param weight slide weight per mesh vertex (#V); empty = 1 everywhere
+/// \param blend ElasticOptions::blend: the surface the relaxation moves on (0: the facets)
 /// \throw Error as elastic_setup (disk_chart).
 std::shared_ptr<const ElasticSetup> elastic_patch_setup(Patch& patch, const Positions3& points,
-                                                        const std::vector<double>& weight);
+                                                        const std::vector<double>& weight,
+                                                        double blend = 0);
 
 /// What the elastic slide of one patch did in one frame (relax.h's ElasticResult's figures).
 struct ElasticReport {

@@ -38,14 +38,25 @@ std::vector<Index> moving_triangles(const LineSearchPatch& patch, const StepCand
   return out;
 }
 
+// A slid vertex where it is written: on the frame's facets (the others at the frame).
+Vec3 written(const LineSearchPatch& patch, const SlideState& s, Index v) {
+  const Index i = patch.movable_slot[v];
+  return i >= 0 ? surface_point(patch.surface, s.where[i]) : s.x[v];
+}
+
 // Slid triangle t folded over in the chart, or turned against its frame triangle (where that
-// has area).
+// has area): where the relaxation sees it and, on a blended surface, where it is written too.
 bool folds(const LineSearchPatch& patch, const SlideState& s, Index t) {
   const Triangle& tri = patch.surface.chart.triangles[t];
   const Vec2& a = s.node_uv[tri[0]];
   if (!(cross2(s.node_uv[tri[1]] - a, s.node_uv[tri[2]] - a) > 0)) return true;
+  const Vec3& frame_normal = patch.surface.normals[t];
   const Vec3 n = (s.x[tri[1]] - s.x[tri[0]]).cross(s.x[tri[2]] - s.x[tri[0]]);
-  return turned_against(n, patch.surface.normals[t]);
+  if (turned_against(n, frame_normal)) return true;
+  if (!patch.surface.blend) return false;
+  const Vec3 p0 = written(patch, s, tri[0]);
+  const Vec3 n_written = (written(patch, s, tri[1]) - p0).cross(written(patch, s, tri[2]) - p0);
+  return turned_against(n_written, frame_normal);
 }
 
 // Trial state: every moving vertex a share of its step along; `share` per movable vertex.
@@ -67,7 +78,7 @@ class Trial {
     state.node_uv[v] = uv;
     state.where[i] = locate_in_chart(patch_.surface.chart, uv, step_.entered[i]);
     state.on_node[i] = 0;
-    state.x[v] = surface_point(patch_.surface, state.where[i]);
+    state.x[v] = relaxed_point(patch_.surface, state.where[i], uv);
   }
 
   void restore(size_t i) {

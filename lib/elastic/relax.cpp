@@ -106,14 +106,20 @@ class Relaxation {
   }
 
  private:
-  // Per movable vertex the Jacobian the step is modelled with: its chart triangle's, or at its
-  // own node (before it first moves) the node's least-squares map.
+  // Per movable vertex the Jacobian the step is modelled with: the blended surface's where it
+  // is; on the facets its chart triangle's, or at its own node (before it first moves) the
+  // node's least-squares map.
   void model_jacobians() {
     T_.resize(m_);
     g_movable_.resize(m_);
-    for (Index i = 0; i < m_; ++i)
-      T_[i] = state_.on_node[i] ? node_jacobian(surface_, setup_.movable[i])
-                                : surface_jacobian(surface_, state_.where[i].triangle);
+    for (Index i = 0; i < m_; ++i) {
+      const Index v = setup_.movable[i];
+      if (surface_.blend)
+        blended_point(surface_, state_.where[i].triangle, state_.node_uv[v], &T_[i]);
+      else
+        T_[i] = state_.on_node[i] ? node_jacobian(surface_, v)
+                                  : surface_jacobian(surface_, state_.where[i].triangle);
+    }
   }
 
   // The direction with the vertices in held_ held (none when empty), as a candidate.
@@ -128,7 +134,8 @@ class Relaxation {
       failed_ = true;
       return false;
     }
-    for (Index i = 0; i < m_; ++i)
+    // A blended surface has a Jacobian at the nodes too: the model's steps are the surface's.
+    for (Index i = 0; i < m_ && !surface_.blend; ++i)
       if (state_.on_node[i] && !direction.d[i].isZero(0))
         direction.d[i] = redirected_from_node(surface_, setup_.movable[i], T_[i], direction.d[i]);
     candidates_.push_back(candidate(std::move(direction.d)));
@@ -162,9 +169,10 @@ class Relaxation {
     return true;
   }
 
-  // The step as it truly is: each vertex moves with the Jacobian of the triangle it enters. If
-  // that step does not go down to first order (the model's Jacobians, at a node or across a
-  // chart edge, are not the surface's), the vertices whose energy would rise stay (held).
+  // The step as it truly is: each vertex moves with the Jacobian of the triangle it enters (on a
+  // blended surface, the smooth one where it is). If that step does not go down to first order
+  // (on the facets the model's Jacobians, at a node or across a chart edge, are not the
+  // surface's), the vertices whose energy would rise stay (held).
   StepCandidate candidate(Positions2 d) {
     StepCandidate out;
     out.entered.resize(m_);
@@ -174,7 +182,8 @@ class Relaxation {
       const Index v = setup_.movable[i];
       out.entered[i] = entered_triangle(setup_.chart, state_.on_node[i] ? v : -1, state_.node_uv[v],
                                         state_.where[i].triangle, d[i]);
-      out.rise[i] = g_[v].dot(surface_jacobian(surface_, out.entered[i]) * d[i]);
+      out.rise[i] = surface_.blend ? g_[v].dot(T_[i] * d[i])
+                                   : g_[v].dot(surface_jacobian(surface_, out.entered[i]) * d[i]);
       slope += out.rise[i];
     }
     if (!(slope < 0))
@@ -304,9 +313,10 @@ ArapTriangles arap_triangles(const ElasticSetup& setup) {
 
 ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>& triangles,
                            const std::vector<std::vector<Index>>& loops, Index outer_loop,
-                           const std::vector<Index>& movable) {
+                           const std::vector<Index>& movable, double blend) {
   ElasticSetup setup;
   setup.chart = disk_chart(points, triangles, loops, outer_loop);
+  if (blend > 0) setup.blend = surface_blend(setup.chart, blend);
   setup.movable = movable;
   setup.movable_slot.assign(points.size(), -1);
   for (size_t i = 0; i < movable.size(); ++i)
@@ -352,7 +362,8 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   };
   for (Index i = 0; i < m; ++i) at_start(i);
   if (m == 0) return result;
-  const FrameSurface surface = frame_surface(chart, frame);
+  const FrameSurface surface =
+      frame_surface(chart, frame, setup.blend.edges.empty() ? nullptr : &setup.blend);
   const double s = setup.bind_area > 0 ? std::sqrt(surface.area / setup.bind_area) : 1.0;
   result.scale = s;
   const ArapTriangles mesh = arap_triangles(setup);
@@ -365,7 +376,10 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   }
   Relaxation relaxation(setup, surface, s, result);
   relax_rounds(relaxation, options, result);
-  const SlideState& slid = relaxation.state();
+  // The slid vertices are written on the frame's facets at their chart points (where a blended
+  // surface's points are not).
+  SlideState slid = relaxation.state();
+  for (Index i = 0; i < m; ++i) slid.x[setup.movable[i]] = surface_point(surface, slid.where[i]);
   // Each round starts where the last ended, with the rotations that minimise the ARAP energy
   // there, and only lowers it: round-off aside, it cannot rise. A frame whose relaxation gained
   // nothing comes back unchanged.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "elastic/blended_surface.h"
 #include "elastic/chart.h"
 #include "elastic/step_direction.h"
 
@@ -31,11 +32,18 @@ struct ElasticOptions {
   /// this fraction of the frame's energy (README rule 10). The default steps leave 0.3-9% on the
   /// slow swings and data/elbow, 7.7% to over 100% on every stress case.
   double convergence = 5e-2;
+  /// Bind time: relax on the frame's facets blended smooth near their edges (blended_surface.h),
+  /// each edge's blend this share of its triangles' inradius wide; 0: on the facets. On the
+  /// facets a slid vertex's minimum sticks to chart edges and slips off them from frame to frame
+  /// (jitter in slow motion); 1 took the jitter of `scripts/quality.sh`'s slow swings down
+  /// 1.1-14x, at 1-3.4x the relax time (tests/bench/elastic.md "A blended surface").
+  double blend = 0;
 };
 
 /// Bind-time precompute of one patch: plain data, immutable once built, shared by every frame.
 struct ElasticSetup {
   Chart chart;
+  SurfaceBlend blend;  ///< the surface the relaxation moves on; empty: the facets
   /// Local ids of the vertices that move (not on a loop, not pinned, slide weight > 0), ascending.
   std::vector<Index> movable;
   std::vector<Index> movable_slot;  ///< per local vertex: its index in `movable`, or -1
@@ -50,10 +58,11 @@ struct ElasticSetup {
 
 /// \param points bind positions of the patch's vertices (local ids); `triangles` index them.
 /// \param movable local ids that move, ascending. Loops, `outer_loop`: as disk_chart.
+/// `blend`: ElasticOptions::blend (0: none).
 /// \throw Error(Numeric) when the chart or the metric's factor cannot be built.
 ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>& triangles,
                            const std::vector<std::vector<Index>>& loops, Index outer_loop,
-                           const std::vector<Index>& movable);
+                           const std::vector<Index>& movable, double blend = 0);
 
 /// The triangles the setup's energy sums over.
 ArapTriangles arap_triangles(const ElasticSetup& setup);

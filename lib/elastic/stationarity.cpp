@@ -130,6 +130,16 @@ Vec3 steepest_descent(const FrameSurface& surface, Index node, const ChartPoint&
   return -lowest.slope * lowest.direction;
 }
 
+Vec3 blended_descent(const FrameSurface& surface, Index t, const Vec2& u, const Vec3& g) {
+  Mat32 J;
+  blended_point(surface, t, u, &J);
+  const Vec3 n = J.col(0).cross(J.col(1));
+  const double length = n.norm();
+  if (!(length > 0) || !std::isfinite(length)) return Vec3::Zero();
+  const Vec3 unit = n / length;
+  return -(g - unit * unit.dot(g));
+}
+
 double stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
                     const SlideState& state, const Positions3& gradient,
                     const ElasticMetric& metric) {
@@ -139,7 +149,9 @@ double stationarity(const FrameSurface& surface, const std::vector<Index>& movab
   for (Index i = 0; i < m; ++i) {
     const Index v = movable[i];
     const Vec3 d =
-        steepest_descent(surface, state.on_node[i] ? v : -1, state.where[i], gradient[v]);
+        surface.blend
+            ? blended_descent(surface, state.where[i].triangle, state.node_uv[v], gradient[v])
+            : steepest_descent(surface, state.on_node[i] ? v : -1, state.where[i], gradient[v]);
     xy[i] = Vec2(d.x(), d.y());
     z0[i] = Vec2(d.z(), 0);
   }

@@ -1,5 +1,6 @@
 // How far a slid patch is from a first-order stationary point of its energy on the frame's
-// faceted surface (lib/elastic/README.md rule 10): the measure behind the stop "converged".
+// faceted surface (lib/elastic/README.md rule 10): the measure behind the stop "converged". (On a
+// blended surface, --blend, the surface is smooth and the descent is the gradient's tangent part.)
 // Phi is piecewise linear, so the energy has kinks where a vertex sits on a chart edge or node,
 // and a minimum often sits on one: there the gradient never vanishes, but no direction goes
 // down. The measure is therefore one-sided: per moving vertex the steepest first-order descent
@@ -33,5 +34,9 @@ double stationarity(const FrameSurface& surface, const std::vector<Index>& movab
 /// zero when no direction goes down. Facets with no area are not left through.
 Vec3 steepest_descent(const FrameSurface& surface, Index node, const ChartPoint& where,
                       const Vec3& g);
+
+/// The same on the blended surface (smooth), from chart point u on patch triangle t: minus g's
+/// part in the surface's tangent plane there; zero where it has none (the frame crushed there).
+Vec3 blended_descent(const FrameSurface& surface, Index t, const Vec2& u, const Vec3& g);
 
 }  // namespace skinslide

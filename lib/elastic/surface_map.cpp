@@ -27,14 +27,22 @@ double wedge_score(const Chart& chart, Index t, Index v, const Vec2& d) {
 
 }  // namespace
 
-FrameSurface frame_surface(const Chart& chart, const Positions3& frame) {
-  FrameSurface out{chart, frame, {}, 0.0};
+FrameSurface frame_surface(const Chart& chart, const Positions3& frame, const SurfaceBlend* blend) {
+  FrameSurface out{chart, frame, {}, 0.0, blend, {}, {}};
   const Index nt = chart.patch_triangle_count;
   out.normals.resize(nt);
   for (Index t = 0; t < nt; ++t) {
     const Triangle& tri = chart.triangles[t];
     out.normals[t] = (frame[tri[1]] - frame[tri[0]]).cross(frame[tri[2]] - frame[tri[0]]);
     out.area += 0.5 * out.normals[t].norm();
+  }
+  if (!blend) return out;
+  out.facet_jacobian.resize(nt);
+  out.facet_origin.resize(nt);
+  for (Index t = 0; t < nt; ++t) {
+    out.facet_jacobian[t] = surface_jacobian(out, t);
+    out.facet_origin[t] =
+        frame[chart.triangles[t][0]] - out.facet_jacobian[t] * chart.uv[chart.triangles[t][0]];
   }
   return out;
 }
@@ -51,6 +59,10 @@ Vec3 surface_point(const FrameSurface& surface, const ChartPoint& p) {
   const Triangle& tri = surface.chart.triangles[p.triangle];
   return p.weight[0] * surface.frame[tri[0]] + p.weight[1] * surface.frame[tri[1]] +
          p.weight[2] * surface.frame[tri[2]];
+}
+
+Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u) {
+  return surface.blend ? blended_point(surface, where.triangle, u) : surface_point(surface, where);
 }
 
 ChartPoint at_node(const Chart& chart, Index v) {

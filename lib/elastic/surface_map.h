@@ -1,13 +1,16 @@
 // The frame's surface over the patch's chart: Phi(u), the barycentric combination of the frame
 // positions of the chart triangle holding u (lib/elastic/README.md rule 5), and its Jacobians,
 // which turn a vertex's chart step into 3D motion (rule 7). Phi is piecewise linear: at a chart
-// edge or node its slope depends on the direction a point leaves in.
+// edge or node its slope depends on the direction a point leaves in. With --blend the relaxation
+// moves on the facets blended smooth instead (blended_surface.h); the slid vertices are written
+// on Phi either way.
 #pragma once
 
 #include <vector>
 
 #include "core/types.h"
 #include "elastic/arap.h"
+#include "elastic/blended_surface.h"
 #include "elastic/chart.h"
 
 namespace skinslide {
@@ -19,9 +22,15 @@ struct FrameSurface {
   const Positions3& frame;    ///< the frame's positions of the patch's vertices (local ids)
   std::vector<Vec3> normals;  ///< per patch triangle
   double area = 0;            ///< the frame's patch area
+  /// The surface the relaxation moves on: the chart's blend (bind time), or null: the facets.
+  const SurfaceBlend* blend = nullptr;
+  /// With a blend, per patch triangle its plane over the chart: origin + jacobian u.
+  std::vector<Mat32> facet_jacobian;
+  std::vector<Vec3> facet_origin;
 };
 
-FrameSurface frame_surface(const Chart& chart, const Positions3& frame);
+FrameSurface frame_surface(const Chart& chart, const Positions3& frame,
+                           const SurfaceBlend* blend = nullptr);
 
 /// dPhi/du (3x2) over patch triangle t, computed when asked (a few operations) rather than
 /// stored: a frame in flight holds less.
@@ -29,6 +38,10 @@ Mat32 surface_jacobian(const FrameSurface& surface, Index t);
 
 /// Phi at a chart point: on its frame triangle.
 Vec3 surface_point(const FrameSurface& surface, const ChartPoint& p);
+
+/// Where the relaxation sees a point at chart point u (on `where`): on the blended surface, or on
+/// Phi without a blend.
+Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u);
 
 /// A point exactly at its chart node v: on a patch triangle around it.
 ChartPoint at_node(const Chart& chart, Index v);

@@ -42,7 +42,7 @@ r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
                    "totals", "timings"], list(r)
 assert r["options"] == {"method": "elastic", "rotation_fits": 3, "max_iterations": 100, "tolerance": 3e-4,
-                        "convergence": 0.05}, r["options"]
+                        "convergence": 0.05, "blend": 0}, r["options"]
 assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving", "loops",
                                  "outer_loop_start", "outer_loop_chosen", "skipped",
                                  "chart_weights"], list(r["patches"][0])

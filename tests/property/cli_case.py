@@ -129,6 +129,8 @@ def build(seed, meshes, ctx):
         if rng.random() < 0.3:
             opts += ["--tolerance", rng.choice(["0", "1e-6", "3e-4", "0.01", "1"] if not big
                                                else ["1e-6", "3e-4", "0.01", "1"])]
+        if rng.random() < 0.3:
+            opts += ["--blend", rng.choice(["0", "0.3", "1", "2"])]
     else:
         if rng.random() < 0.3:
             opts += ["--density", rng.choice(["paper", "inverse", "length", "uniform"])]
@@ -389,7 +391,8 @@ def write(case, folder):
         kept = []
         for flag, value in pairs:
             if flag in ("--strength", "--rotation-fits", "--max-iterations", "--q-floor",
-                        "--cg-max-iterations", "--lookup-size", "--tolerance", "--cg-tolerance"):
+                        "--cg-max-iterations", "--lookup-size", "--tolerance", "--cg-tolerance",
+                        "--blend"):
                 cfg.append(f"{flag[2:]} = {value}")
             elif flag in ("--method", "--density", "--holes", "--frame-solver", "--locate"):
                 cfg.append(f'{flag[2:]} = "{value}"')

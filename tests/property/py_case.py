@@ -22,7 +22,7 @@ PY_OPTIONS = {"--rotation-fits": ("rotation_fits", int), "--max-iterations": ("m
               "--holes": ("holes", str), "--q-floor": ("q_floor", float),
               "--frame-solver": ("frame_solver", str), "--cg-tolerance": ("cg_tolerance", float),
               "--cg-max-iterations": ("cg_max_iterations", int), "--locate": ("locate", str),
-              "--lookup-size": ("lookup_size", int)}
+              "--lookup-size": ("lookup_size", int), "--blend": ("blend", float)}
 
 
 _read = {}

@@ -1,0 +1,177 @@
+#include "elastic/blended_surface.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/LU>
+
+#include "elastic/surface_map.h"
+
+namespace skinslide {
+namespace {
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+double inradius(const Chart& chart, Index t) {
+  const Triangle& tri = chart.triangles[t];
+  const Vec2 &a = chart.uv[tri[0]], &b = chart.uv[tri[1]], &c = chart.uv[tri[2]];
+  const double perimeter = (b - a).norm() + (c - b).norm() + (a - c).norm();
+  return perimeter > 0 ? std::abs(cross2(b - a, c - a)) / perimeter : 0.0;
+}
+
+bool is_patch(const Chart& chart, Index t) { return t >= 0 && t < chart.patch_triangle_count; }
+
+struct Box {
+  Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+  void add(const Vec2& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool meets(const Box& o) const {
+    return lo.x() <= o.hi.x() && o.lo.x() <= hi.x() && lo.y() <= o.hi.y() && o.lo.y() <= hi.y();
+  }
+};
+
+// Where triangle f's weight is not zero: the triangle with its blended edges' lines moved out by
+// their half-widths (a needle's reaches far past its tip), boxed.
+Box support_box(const Chart& chart, const BlendEdges& e, Index f) {
+  Box box;
+  for (int k = 0; k < 3; ++k) {
+    // Corner k lies on edges k + 1 and k + 2.
+    const int a = (k + 1) % 3, b = (k + 2) % 3;
+    Eigen::Matrix2d lines;
+    lines.row(0) = e.normal[a].transpose();
+    lines.row(1) = e.normal[b].transpose();
+    const Vec2 rhs(e.offset[a] - e.width[a], e.offset[b] - e.width[b]);
+    const Vec2 corner = lines.partialPivLu().solve(rhs);
+    box.add(corner.allFinite() ? corner : chart.uv[chart.triangles[f][k]]);
+  }
+  return box;
+}
+
+// Per patch triangle t, every patch triangle whose weight may be non-zero somewhere on t (boxes
+// that meet, found through a uniform grid over the chart), t first, the others ascending: the
+// blend sums over all of them, so it is the same function seen from either side of an edge.
+void gather_around(const Chart& chart, SurfaceBlend& blend) {
+  const Index nt = chart.patch_triangle_count;
+  std::vector<Box> own(nt), support(nt);
+  Box all;
+  for (Index t = 0; t < nt; ++t) {
+    for (Index v : chart.triangles[t]) own[t].add(chart.uv[v]);
+    // Round-off may leave a located point a hair outside its triangle.
+    own[t].lo -= Vec2::Constant(1e-12);
+    own[t].hi += Vec2::Constant(1e-12);
+    support[t] = support_box(chart, blend.edges[t], t);
+    all.add(own[t].lo);
+    all.add(own[t].hi);
+  }
+  // About two triangles a cell; cells hold the triangles whose support box meets them.
+  const Vec2 extent = (all.hi - all.lo).cwiseMax(Vec2::Constant(1e-300));
+  const int side = std::clamp(static_cast<int>(std::sqrt(nt / 2.0)), 1, 4096);
+  const auto cell = [&](const Vec2& p, int c) {
+    return std::clamp(static_cast<int>((p[c] - all.lo[c]) / extent[c] * side), 0, side - 1);
+  };
+  std::vector<std::vector<Index>> grid(static_cast<size_t>(side) * side);
+  for (Index f = 0; f < nt; ++f)
+    for (int y = cell(support[f].lo, 1); y <= cell(support[f].hi, 1); ++y)
+      for (int x = cell(support[f].lo, 0); x <= cell(support[f].hi, 0); ++x)
+        grid[static_cast<size_t>(y) * side + x].push_back(f);
+  blend.around_start.assign(static_cast<size_t>(nt) + 1, 0);
+  blend.around.clear();
+  std::vector<Index> seen(nt, -1), found;
+  for (Index t = 0; t < nt; ++t) {
+    found.clear();
+    seen[t] = t;
+    for (int y = cell(own[t].lo, 1); y <= cell(own[t].hi, 1); ++y)
+      for (int x = cell(own[t].lo, 0); x <= cell(own[t].hi, 0); ++x)
+        for (Index f : grid[static_cast<size_t>(y) * side + x])
+          if (seen[f] != t && support[f].meets(own[t])) {
+            seen[f] = t;
+            found.push_back(f);
+          }
+    std::sort(found.begin(), found.end());
+    blend.around.push_back(t);
+    blend.around.insert(blend.around.end(), found.begin(), found.end());
+    blend.around_start[t + 1] = static_cast<Index>(blend.around.size());
+  }
+}
+
+// smoothstep of s clamped to [0, 1], and its derivative.
+double ramp(double s) {
+  s = std::clamp(s, 0.0, 1.0);
+  return s * s * (3 - 2 * s);
+}
+double ramp_slope(double s) { return s <= 0 || s >= 1 ? 0.0 : 6 * s * (1 - s); }
+
+}  // namespace
+
+SurfaceBlend surface_blend(const Chart& chart, double width_share) {
+  const Index nt = chart.patch_triangle_count;
+  SurfaceBlend blend;
+  blend.edges.resize(nt);
+  std::vector<double> r(nt);
+  for (Index t = 0; t < nt; ++t) r[t] = inradius(chart, t);
+  for (Index t = 0; t < nt; ++t) {
+    const Triangle& tri = chart.triangles[t];
+    BlendEdges& e = blend.edges[t];
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 &a = chart.uv[tri[(k + 1) % 3]], &b = chart.uv[tri[(k + 2) % 3]];
+      // Counter-clockwise triangles: the inside is to the left of a -> b.
+      Vec2 n(a.y() - b.y(), b.x() - a.x());
+      const double length = n.norm();
+      if (length > 0) n /= length;
+      e.normal[k] = n;
+      e.offset[k] = n.dot(a);
+      const Index across = chart.neighbour[t][k];
+      e.width[k] = is_patch(chart, across) ? width_share * std::min(r[t], r[across]) : 0.0;
+    }
+  }
+  gather_around(chart, blend);
+  return blend;
+}
+
+Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* jacobian) {
+  const SurfaceBlend& blend = *surface.blend;
+  double total = 0;
+  Vec3 sum = Vec3::Zero();
+  Vec2 total_slope = Vec2::Zero();
+  Mat32 sum_slope = Mat32::Zero();
+  for (Index a = blend.around_start[t]; a < blend.around_start[t + 1]; ++a) {
+    const Index f = blend.around[a];
+    const BlendEdges& e = blend.edges[f];
+    std::array<double, 3> r, dr;
+    bool outside = false;
+    for (int k = 0; k < 3 && !outside; ++k) {
+      const double h = e.normal[k].dot(u) - e.offset[k];
+      const double w = e.width[k];
+      if (w > 0) {
+        const double s = (h + w) / (2 * w);
+        r[k] = ramp(s);
+        dr[k] = ramp_slope(s) / (2 * w);
+      } else {
+        // Not blended: the triangle's own side only (the point's own triangle counts round-off
+        // beside it as inside).
+        r[k] = h >= 0 || f == t ? 1.0 : 0.0;
+        dr[k] = 0;
+      }
+      outside = !(r[k] > 0);
+    }
+    if (outside) continue;
+    const double phi = r[0] * r[1] * r[2];
+    const Mat32& J = surface.facet_jacobian[f];
+    const Vec3 plane = surface.facet_origin[f] + J * u;
+    total += phi;
+    sum += phi * plane;
+    if (jacobian) {
+      const Vec2 slope = dr[0] * r[1] * r[2] * e.normal[0] + r[0] * dr[1] * r[2] * e.normal[1] +
+                         r[0] * r[1] * dr[2] * e.normal[2];
+      total_slope += slope;
+      sum_slope += phi * J + plane * slope.transpose();
+    }
+  }
+  const Vec3 x = sum / total;
+  if (jacobian) *jacobian = (sum_slope - x * total_slope.transpose()) / total;
+  return x;
+}
+
+}  // namespace skinslide
