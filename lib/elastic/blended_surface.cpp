@@ -10,7 +10,6 @@
 namespace skinslide {
 namespace {
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 double inradius(const Chart& chart, Index t) {
   const Triangle& tri = chart.triangles[t];
@@ -62,6 +61,8 @@ void gather_around(const Chart& chart, SurfaceBlend& blend) {
     own[t].lo -= Vec2::Constant(1e-12);
     own[t].hi += Vec2::Constant(1e-12);
     support[t] = support_box(chart, blend.edges[t], t);
+    blend.support.push_back({support[t].lo.x(), support[t].lo.y(), support[t].hi.x(),
+                             support[t].hi.y()});
     all.add(own[t].lo);
     all.add(own[t].hi);
   }
@@ -138,6 +139,8 @@ Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* j
   Mat32 sum_slope = Mat32::Zero();
   for (Index a = blend.around_start[t]; a < blend.around_start[t + 1]; ++a) {
     const Index f = blend.around[a];
+    const std::array<double, 4>& box = blend.support[f];
+    if (u.x() < box[0] || u.y() < box[1] || u.x() > box[2] || u.y() > box[3]) continue;
     const BlendEdges& e = blend.edges[f];
     std::array<double, 3> r, dr;
     bool outside = false;

@@ -44,6 +44,8 @@ struct SurfaceBlend {
   /// CSR per patch triangle t: the patch triangles whose weight may be non-zero on t, t first.
   std::vector<Index> around_start;
   std::vector<Index> around;
+  /// Per patch triangle the box (lo x, lo y, hi x, hi y) of where its weight is not zero.
+  std::vector<std::array<double, 4>> support;
 };
 
 /// \param width_share each edge's blend half-width over the smaller inradius (in the chart) of

@@ -18,7 +18,6 @@
 namespace skinslide {
 namespace {
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // tan(angle/2) between e1 and e2 (of lengths l1, l2), from sin/(1 + cos): stable down to zero
 // angles.

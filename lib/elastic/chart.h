@@ -55,6 +55,10 @@ Chart disk_chart(const Positions3& points, const std::vector<Triangle>& triangle
                  const std::vector<std::vector<Index>>& loops, Index outer_loop,
                  const ChartSolver& solver = {});
 
+/// The z of the 2D cross product a x b: twice the signed area of the triangle (0, a, b), positive
+/// when b lies counter-clockwise of a.
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 /// A point of the chart on a patch triangle: barycentric weights, each in [0, 1], summing to 1.
 struct ChartPoint {
   Index triangle = -1;

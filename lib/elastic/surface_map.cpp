@@ -13,7 +13,6 @@ namespace {
 // A point whose barycentric is at most this is on the triangle's edge.
 constexpr double kOnEdge = 1e-12;
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // How far direction d (non-zero) points into the wedge of patch triangle t at its corner v: the
 // smaller of the two normalised crosses with the wedge's edges, >= 0 inside.
