@@ -61,8 +61,10 @@ void gather_around(const Chart& chart, SurfaceBlend& blend) {
     own[t].lo -= Vec2::Constant(1e-12);
     own[t].hi += Vec2::Constant(1e-12);
     support[t] = support_box(chart, blend.edges[t], t);
-    blend.support.push_back({support[t].lo.x(), support[t].lo.y(), support[t].hi.x(),
-                             support[t].hi.y()});
+    // Padded as the own boxes are: the box's corners come from a solve, and a node on the box's
+    // edge must not be rejected by round-off.
+    blend.support.push_back({support[t].lo.x() - 1e-12, support[t].lo.y() - 1e-12,
+                             support[t].hi.x() + 1e-12, support[t].hi.y() + 1e-12});
     all.add(own[t].lo);
     all.add(own[t].hi);
   }
@@ -140,7 +142,8 @@ Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* j
   for (Index a = blend.around_start[t]; a < blend.around_start[t + 1]; ++a) {
     const Index f = blend.around[a];
     const std::array<double, 4>& box = blend.support[f];
-    if (u.x() < box[0] || u.y() < box[1] || u.x() > box[2] || u.y() > box[3]) continue;
+    // The point's own triangle always counts: it keeps the sum above zero.
+    if (f != t && (u.x() < box[0] || u.y() < box[1] || u.x() > box[2] || u.y() > box[3])) continue;
     const BlendEdges& e = blend.edges[f];
     std::array<double, 3> r, dr;
     bool outside = false;
