@@ -55,12 +55,18 @@ void gather_around(const Chart& chart, SurfaceBlend& blend) {
   const Index nt = chart.patch_triangle_count;
   std::vector<Box> own(nt), support(nt);
   Box all;
+  blend.support.clear();
   for (Index t = 0; t < nt; ++t) {
     for (Index v : chart.triangles[t]) own[t].add(chart.uv[v]);
     // Round-off may leave a located point a hair outside its triangle.
     own[t].lo -= Vec2::Constant(1e-12);
     own[t].hi += Vec2::Constant(1e-12);
     support[t] = support_box(chart, blend.edges[t], t);
+    const double reach = blend.edges[t].reach;
+    if (std::isfinite(reach)) {
+      support[t].lo = support[t].lo.cwiseMax(own[t].lo - Vec2::Constant(reach));
+      support[t].hi = support[t].hi.cwiseMin(own[t].hi + Vec2::Constant(reach));
+    }
     // Padded as the own boxes are: the box's corners come from a solve, and a node on the box's
     // edge must not be rejected by round-off.
     blend.support.push_back({support[t].lo.x() - 1e-12, support[t].lo.y() - 1e-12,
@@ -106,6 +112,56 @@ double ramp(double s) {
 }
 double ramp_slope(double s) { return s <= 0 || s >= 1 ? 0.0 : 6 * s * (1 - s); }
 
+// u's distance to chart triangle t (0 inside) and, outside, its gradient: the unit vector from
+// the triangle's nearest point to u.
+double distance_to_triangle(const Chart& chart, Index t, const Vec2& u, Vec2* gradient) {
+  const Triangle& tri = chart.triangles[t];
+  double best = INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    const Vec2 &a = chart.uv[tri[(k + 1) % 3]], &b = chart.uv[tri[(k + 2) % 3]];
+    const Vec2 ab = b - a;
+    const double along = ab.squaredNorm() > 0 ? std::clamp((u - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    const Vec2 away = u - (a + along * ab);
+    const double d = away.norm();
+    if (d < best) {
+      best = d;
+      if (gradient) *gradient = d > 0 ? Vec2(away / d) : Vec2::Zero();
+    }
+  }
+  const Vec2 &a = chart.uv[tri[0]], &b = chart.uv[tri[1]], &c = chart.uv[tri[2]];
+  const bool inside = cross2(b - a, u - a) >= 0 && cross2(c - b, u - b) >= 0 && cross2(a - c, u - c) >= 0;
+  if (inside) {
+    if (gradient) *gradient = Vec2::Zero();
+    return 0;
+  }
+  return best;
+}
+
+// Whether triangle f's bands reach u (every ramp above 0).
+bool in_bands(const BlendEdges& e, const Vec2& u) {
+  for (int k = 0; k < 3; ++k)
+    if (!(e.normal[k].dot(u) - e.offset[k] > -e.width[k])) return false;
+  return true;
+}
+
+// Per patch triangle, the distance of the nearest node its bands reach that is not its corner
+// (BlendEdges::reach). Such a node lies in the support box of f, so it is a corner of a triangle
+// g with f among g's `around`.
+void limit_reach(const Chart& chart, SurfaceBlend& blend) {
+  const Index nt = chart.patch_triangle_count;
+  for (Index g = 0; g < nt; ++g)
+    for (Index a = blend.around_start[g] + 1; a < blend.around_start[g + 1]; ++a) {
+      const Index f = blend.around[a];
+      BlendEdges& e = blend.edges[f];
+      for (Index n : chart.triangles[g]) {
+        const Triangle& corners = chart.triangles[f];
+        if (n == corners[0] || n == corners[1] || n == corners[2]) continue;
+        if (!in_bands(e, chart.uv[n])) continue;
+        e.reach = std::min(e.reach, distance_to_triangle(chart, f, chart.uv[n], nullptr));
+      }
+    }
+}
+
 }  // namespace
 
 SurfaceBlend surface_blend(const Chart& chart, double width_share) {
@@ -129,6 +185,8 @@ SurfaceBlend surface_blend(const Chart& chart, double width_share) {
       e.width[k] = is_patch(chart, across) ? width_share * std::min(r[t], r[across]) : 0.0;
     }
   }
+  gather_around(chart, blend);
+  limit_reach(chart, blend);
   gather_around(chart, blend);
   return blend;
 }
@@ -163,14 +221,30 @@ Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* j
       outside = !(r[k] > 0);
     }
     if (outside) continue;
-    const double phi = r[0] * r[1] * r[2];
+    double phi = r[0] * r[1] * r[2];
+    Vec2 slope = Vec2::Zero();
+    if (jacobian)
+      slope = dr[0] * r[1] * r[2] * e.normal[0] + r[0] * dr[1] * r[2] * e.normal[1] +
+              r[0] * r[1] * dr[2] * e.normal[2];
+    if (f != t && std::isfinite(e.reach)) {
+      // The fade from reach / 2 to reach; constant near the triangle, where the distance has a
+      // corner. (The point lies on its own triangle t: no fade there.)
+      Vec2 away;
+      const double d = distance_to_triangle(surface.chart, f, u, &away);
+      if (d >= e.reach) continue;
+      if (d > e.reach / 2) {
+        const double s = (e.reach - d) / (e.reach / 2);
+        const double fade = ramp(s);
+        slope = fade * slope - phi * ramp_slope(s) / (e.reach / 2) * away;
+        phi *= fade;
+      }
+    }
     const Mat32& J = surface.facet_jacobian[f];
-    const Vec3 plane = surface.facet_origin[f] + J * u;
+    const Index corner = surface.chart.triangles[f][0];
+    const Vec3 plane = surface.frame[corner] + J * (u - surface.chart.uv[corner]);
     total += phi;
     sum += phi * plane;
     if (jacobian) {
-      const Vec2 slope = dr[0] * r[1] * r[2] * e.normal[0] + r[0] * dr[1] * r[2] * e.normal[1] +
-                         r[0] * r[1] * dr[2] * e.normal[2];
       total_slope += slope;
       sum_slope += phi * J + plane * slope.transpose();
     }

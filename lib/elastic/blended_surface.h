@@ -14,11 +14,14 @@
 // shared edge and every plane through a node passes through it, so Phi_b interpolates the frame
 // at every node; the sum runs over every triangle whose weight can be non-zero on the point's
 // triangle (a needle's reaches past its tip), so it is one C1 function from either side of an
-// edge. Where slivers' narrow bands make it bend sharply, the relaxation's steps can stall (the
+// edge. Two band lines that meet at a sharp corner (a needle's tip, a cap's base) meet far beyond
+// it, past other nodes: there phi_f also fades with the distance from f, to 0 before the nearest
+// node that is not f's corner, so the surface still passes through every node. Where slivers' narrow bands make it bend sharply, the relaxation's steps can stall (the
 // stop says `no step`): tests/bench/elastic.md "A blended surface".
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "core/types.h"
@@ -36,6 +39,10 @@ struct BlendEdges {
   std::array<Vec2, 3> normal;
   std::array<double, 3> offset;
   std::array<double, 3> width;
+  /// How far from the triangle its weight reaches: it fades from 1 at distance reach / 2 to 0 at
+  /// `reach`, the distance of the nearest node the bands would reach that is not its corner
+  /// (infinite: no such node, no fade).
+  double reach = INFINITY;
 };
 
 /// Bind-time data of the blend over one chart: plain data, read-only afterwards.

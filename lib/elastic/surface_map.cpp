@@ -27,7 +27,7 @@ double wedge_score(const Chart& chart, Index t, Index v, const Vec2& d) {
 }  // namespace
 
 FrameSurface frame_surface(const Chart& chart, const Positions3& frame, const SurfaceBlend* blend) {
-  FrameSurface out{chart, frame, {}, 0.0, blend, {}, {}};
+  FrameSurface out{chart, frame, {}, 0.0, blend, {}};
   const Index nt = chart.patch_triangle_count;
   out.normals.resize(nt);
   for (Index t = 0; t < nt; ++t) {
@@ -37,12 +37,7 @@ FrameSurface frame_surface(const Chart& chart, const Positions3& frame, const Su
   }
   if (!blend) return out;
   out.facet_jacobian.resize(nt);
-  out.facet_origin.resize(nt);
-  for (Index t = 0; t < nt; ++t) {
-    out.facet_jacobian[t] = surface_jacobian(out, t);
-    out.facet_origin[t] =
-        frame[chart.triangles[t][0]] - out.facet_jacobian[t] * chart.uv[chart.triangles[t][0]];
-  }
+  for (Index t = 0; t < nt; ++t) out.facet_jacobian[t] = surface_jacobian(out, t);
   return out;
 }
 

@@ -24,9 +24,10 @@ struct FrameSurface {
   double area = 0;            ///< the frame's patch area
   /// The surface the relaxation moves on: the chart's blend (bind time), or null: the facets.
   const SurfaceBlend* blend = nullptr;
-  /// With a blend, per patch triangle its plane over the chart: origin + jacobian u.
+  /// With a blend, per patch triangle the slope of its plane over the chart: the plane is
+  /// frame[corner 0] + facet_jacobian (u - uv[corner 0]). (An origin at u = 0 would lose the
+  /// plane's digits at the nodes: a sliver's slope is huge.)
   std::vector<Mat32> facet_jacobian;
-  std::vector<Vec3> facet_origin;
 };
 
 FrameSurface frame_surface(const Chart& chart, const Positions3& frame,

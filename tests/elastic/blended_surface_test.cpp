@@ -20,16 +20,23 @@ namespace skinslide {
 namespace {
 
 // A bumpy 6 x 6 grid of triangles (7 x 7 nodes): its chart, and a frame that bends and ripples it
-// so that neighbouring facets meet at a crease everywhere.
+// so that neighbouring facets meet at a crease everywhere. With `jitter` its inner nodes are moved
+// at random by up to that share of the grid's spacing: needles and caps among its triangles.
 struct Bumpy {
   Positions3 bind;
   std::vector<Triangle> triangles;
   Chart chart;
   Positions3 frame;
-  Bumpy() {
+  explicit Bumpy(double jitter = 0, unsigned seed = 1) {
     const int n = 7;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> shift(-jitter, jitter);
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) bind.emplace_back(i + 0.2 * ((i * j) % 3 - 1) * (j % 2), j, 0);
+      for (int i = 0; i < n; ++i) {
+        const bool inner = i > 0 && j > 0 && i + 1 < n && j + 1 < n;
+        const double dx = inner ? shift(rng) : 0, dy = inner ? shift(rng) : 0;
+        bind.emplace_back(i + 0.2 * ((i * j) % 3 - 1) * (j % 2) + dx, j + dy, 0);
+      }
     for (int j = 0; j + 1 < n; ++j)
       for (int i = 0; i + 1 < n; ++i) {
         const Index a = j * n + i, b = a + 1, c = a + n, d = c + 1;
@@ -46,6 +53,17 @@ struct Bumpy {
       frame.emplace_back(p.x(), p.y(),
                          0.4 * std::sin(1.7 * p.x()) * std::cos(1.3 * p.y()) + 0.1 * p.x() * p.x());
   }
+  // The smallest angle of any chart triangle, in degrees.
+  double smallest_angle() const {
+    double smallest = 180;
+    for (const Triangle& t : chart.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 a = chart.uv[t[(k + 1) % 3]] - chart.uv[t[k]];
+        const Vec2 b = chart.uv[t[(k + 2) % 3]] - chart.uv[t[k]];
+        smallest = std::min(smallest, std::acos(a.dot(b) / (a.norm() * b.norm())) * 180 / M_PI);
+      }
+    return smallest;
+  }
 };
 
 // A point inside chart triangle t at barycentrics (a, b, 1 - a - b).
@@ -54,20 +72,34 @@ Vec2 inside(const Chart& chart, Index t, double a, double b) {
   return a * chart.uv[tri[0]] + b * chart.uv[tri[1]] + (1 - a - b) * chart.uv[tri[2]];
 }
 
-TEST(BlendedSurface, PassesThroughEveryFrameVertex) {
-  const Bumpy m;
-  const SurfaceBlend blend = surface_blend(m.chart, 1.0);
+void expect_through_every_frame_vertex(const Bumpy& m, double width_share) {
+  const SurfaceBlend blend = surface_blend(m.chart, width_share);
   const FrameSurface surface = frame_surface(m.chart, m.frame, &blend);
   for (Index v = 0; v < static_cast<Index>(m.bind.size()); ++v)
     for (Index k = m.chart.corner_start[v]; k < m.chart.corner_start[v + 1]; ++k) {
       const Vec3 x = blended_point(surface, m.chart.corner_triangles[k], m.chart.uv[v]);
-      EXPECT_LT((x - m.frame[v]).norm(), 1e-14) << "node " << v;
+      ASSERT_LT((x - m.frame[v]).norm(), 1e-14) << "node " << v << ", blend " << width_share;
     }
 }
 
-TEST(BlendedSurface, IsSmoothAcrossEdgesWhereTheFacetsCrease) {
-  const Bumpy m;
-  const SurfaceBlend blend = surface_blend(m.chart, 1.0);
+TEST(BlendedSurface, PassesThroughEveryFrameVertex) { expect_through_every_frame_vertex(Bumpy(), 1.0); }
+
+// A needle's or a cap's band lines meet far beyond its sharp corners: its weight must still be 0
+// at every node it does not touch, or the surface leaves the frame's vertices there.
+TEST(BlendedSurface, PassesThroughEveryFrameVertexAmongNeedlesAndCaps) {
+  double sharpest = 180;
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    const Bumpy m(0.42, seed);
+    sharpest = std::min(sharpest, m.smallest_angle());
+    for (double width_share : {0.5, 1.0, 2.0}) expect_through_every_frame_vertex(m, width_share);
+  }
+  EXPECT_LT(sharpest, 1.0) << "the jittered grids hold needles or caps";
+}
+
+// Seen from either side of every inner edge, the same point and the same Jacobian; returns the
+// number of inner edges.
+int expect_smooth_across_edges(const Bumpy& m, double width_share, bool creased = true) {
+  const SurfaceBlend blend = surface_blend(m.chart, width_share);
   const FrameSurface surface = frame_surface(m.chart, m.frame, &blend);
   int inner_edges = 0;
   for (Index t = 0; t < m.chart.patch_triangle_count; ++t)
@@ -84,17 +116,23 @@ TEST(BlendedSurface, IsSmoothAcrossEdgesWhereTheFacetsCrease) {
       EXPECT_LT((here - there).norm(), 1e-14);
       EXPECT_LT((J_here - J_there).norm(), 1e-12 * J_here.norm()) << "triangle " << t;
       // The facets' own slopes jump there: the blend is what makes it smooth.
-      EXPECT_GT((surface_jacobian(surface, t) - surface_jacobian(surface, across)).norm(),
-                1e-3 * J_here.norm());
+      if (creased) {
+        EXPECT_GT((surface_jacobian(surface, t) - surface_jacobian(surface, across)).norm(),
+                  1e-3 * J_here.norm());
+      }
     }
-  EXPECT_GT(inner_edges, 100);
+  return inner_edges;
 }
 
-TEST(BlendedSurface, ItsJacobianIsItsDerivative) {
-  const Bumpy m;
-  const SurfaceBlend blend = surface_blend(m.chart, 1.0);
+TEST(BlendedSurface, IsSmoothAcrossEdgesWhereTheFacetsCrease) {
+  EXPECT_GT(expect_smooth_across_edges(Bumpy(), 1.0), 100);
+}
+
+// Its Jacobian against central differences at random points inside the triangles.
+void expect_jacobian_is_derivative(const Bumpy& m, double width_share, unsigned seed) {
+  const SurfaceBlend blend = surface_blend(m.chart, width_share);
   const FrameSurface surface = frame_surface(m.chart, m.frame, &blend);
-  std::mt19937 rng(7);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.02, 0.96);
   const double h = 1e-7;
   for (int trial = 0; trial < 200; ++trial) {
@@ -110,6 +148,20 @@ TEST(BlendedSurface, ItsJacobianIsItsDerivative) {
           (blended_point(surface, t, u + du) - blended_point(surface, t, u - du)) / (2 * h);
     }
     EXPECT_LT((J - numeric).norm(), 1e-6 * (1 + J.norm())) << "triangle " << t;
+  }
+}
+
+TEST(BlendedSurface, ItsJacobianIsItsDerivative) { expect_jacobian_is_derivative(Bumpy(), 1.0, 7); }
+
+// Where the weights of needles and caps fade with the distance from them, it stays one smooth
+// function with the Jacobian it reports.
+TEST(BlendedSurface, StaysSmoothAmongNeedlesAndCaps) {
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    const Bumpy m(0.42, seed);
+    for (double width_share : {1.0, 2.0}) {
+      expect_smooth_across_edges(m, width_share, false);
+      expect_jacobian_is_derivative(m, width_share, seed);
+    }
   }
 }
 
