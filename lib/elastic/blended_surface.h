@@ -16,8 +16,9 @@
 // triangle (a needle's reaches past its tip), so it is one C1 function from either side of an
 // edge. Two band lines that meet at a sharp corner (a needle's tip, a cap's base) meet far beyond
 // it, past other nodes: there phi_f also fades with the distance from f, to 0 before the nearest
-// node that is not f's corner, so the surface still passes through every node. Where slivers' narrow bands make it bend sharply, the relaxation's steps can stall (the
-// stop says `no step`): tests/bench/elastic.md "A blended surface".
+// node that is not f's corner, so the surface still passes through every node. Next to slivers
+// the bands narrow (kSliverFanShare in the .cpp), so that the slide written on the facets keeps
+// what the relaxation gained: tests/bench/elastic.md "Slivers under the blend".
 #pragma once
 
 #include <array>
@@ -56,8 +57,9 @@ struct SurfaceBlend {
 };
 
 /// \param width_share each edge's blend half-width over the smaller inradius (in the chart) of
-/// the two triangles that share it (--blend; > 0). At 1 and above no point of a triangle lies
-/// beyond every band: the surface has no flat part left.
+/// the two triangles that share it (--blend; > 0), and at most 3x that share of the smallest
+/// inradius around either of its ends (next to a sliver: kSliverFanShare). At 1 and above no
+/// point of a triangle lies beyond every band: the surface has no flat part left.
 SurfaceBlend surface_blend(const Chart& chart, double width_share);
 
 /// Phi_b at chart point u, which lies on (or by round-off beside) patch triangle t; its Jacobian
