@@ -377,9 +377,14 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   Relaxation relaxation(setup, surface, s, result);
   relax_rounds(relaxation, options, result);
   // The slid vertices are written on the frame's facets at their chart points (where a blended
-  // surface's points are not).
-  SlideState slid = relaxation.state();
-  for (Index i = 0; i < m; ++i) slid.x[setup.movable[i]] = surface_point(surface, slid.where[i]);
+  // surface's points are not; on the facets the relaxed points are the written ones).
+  SlideState written;
+  if (surface.blend) {
+    written = relaxation.state();
+    for (Index i = 0; i < m; ++i)
+      written.x[setup.movable[i]] = surface_point(surface, written.where[i]);
+  }
+  const SlideState& slid = surface.blend ? written : relaxation.state();
   // Each round starts where the last ended, with the rotations that minimise the ARAP energy
   // there, and only lowers it: round-off aside, it cannot rise. A frame whose relaxation gained
   // nothing comes back unchanged.
