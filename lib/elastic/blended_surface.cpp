@@ -10,7 +10,6 @@
 namespace skinslide {
 namespace {
 
-
 double inradius(const Chart& chart, Index t) {
   const Triangle& tri = chart.triangles[t];
   const Vec2 &a = chart.uv[tri[0]], &b = chart.uv[tri[1]], &c = chart.uv[tri[2]];
@@ -123,35 +122,52 @@ double ramp(double s) {
 }
 double ramp_slope(double s) { return s <= 0 || s >= 1 ? 0.0 : 6 * s * (1 - s); }
 
+// The ramp of triangle e's edge k at u, and its slope along the edge's normal: from 0 at -w to 1
+// at +w of u's signed distance to the edge's line; an edge that is not blended (w = 0) keeps its
+// own side only (`own`: u's own triangle, which counts round-off beside it as inside).
+double edge_ramp(const BlendEdges& e, int k, const Vec2& u, bool own, double* slope) {
+  const double h = e.normal[k].dot(u) - e.offset[k];
+  const double w = e.width[k];
+  if (!(w > 0)) {
+    *slope = 0;
+    return h >= 0 || own ? 1.0 : 0.0;
+  }
+  const double s = (h + w) / (2 * w);
+  *slope = ramp_slope(s) / (2 * w);
+  return ramp(s);
+}
+
 // u's distance to chart triangle t (0 inside) and, outside, its gradient: the unit vector from
 // the triangle's nearest point to u.
 double distance_to_triangle(const Chart& chart, Index t, const Vec2& u, Vec2* gradient) {
   const Triangle& tri = chart.triangles[t];
+  const Vec2 &a = chart.uv[tri[0]], &b = chart.uv[tri[1]], &c = chart.uv[tri[2]];
+  if (cross2(b - a, u - a) >= 0 && cross2(c - b, u - b) >= 0 && cross2(a - c, u - c) >= 0) {
+    if (gradient) *gradient = Vec2::Zero();
+    return 0;
+  }
   double best = INFINITY;
   for (int k = 0; k < 3; ++k) {
-    const Vec2 &a = chart.uv[tri[(k + 1) % 3]], &b = chart.uv[tri[(k + 2) % 3]];
-    const Vec2 ab = b - a;
-    const double along = ab.squaredNorm() > 0 ? std::clamp((u - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    const Vec2 away = u - (a + along * ab);
+    const Vec2 &from = chart.uv[tri[(k + 1) % 3]], &to = chart.uv[tri[(k + 2) % 3]];
+    const Vec2 edge = to - from;
+    const double along = edge.squaredNorm() > 0
+                             ? std::clamp((u - from).dot(edge) / edge.squaredNorm(), 0.0, 1.0)
+                             : 0.0;
+    const Vec2 away = u - (from + along * edge);
     const double d = away.norm();
     if (d < best) {
       best = d;
       if (gradient) *gradient = d > 0 ? Vec2(away / d) : Vec2::Zero();
     }
   }
-  const Vec2 &a = chart.uv[tri[0]], &b = chart.uv[tri[1]], &c = chart.uv[tri[2]];
-  const bool inside = cross2(b - a, u - a) >= 0 && cross2(c - b, u - b) >= 0 && cross2(a - c, u - c) >= 0;
-  if (inside) {
-    if (gradient) *gradient = Vec2::Zero();
-    return 0;
-  }
   return best;
 }
 
-// Whether triangle f's bands reach u (every ramp above 0).
+// Whether triangle f's bands reach u, a point off f (every ramp above 0).
 bool in_bands(const BlendEdges& e, const Vec2& u) {
+  double slope;
   for (int k = 0; k < 3; ++k)
-    if (!(e.normal[k].dot(u) - e.offset[k] > -e.width[k])) return false;
+    if (!(edge_ramp(e, k, u, false, &slope) > 0)) return false;
   return true;
 }
 
@@ -224,18 +240,7 @@ Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* j
     std::array<double, 3> r, dr;
     bool outside = false;
     for (int k = 0; k < 3 && !outside; ++k) {
-      const double h = e.normal[k].dot(u) - e.offset[k];
-      const double w = e.width[k];
-      if (w > 0) {
-        const double s = (h + w) / (2 * w);
-        r[k] = ramp(s);
-        dr[k] = ramp_slope(s) / (2 * w);
-      } else {
-        // Not blended: the triangle's own side only (the point's own triangle counts round-off
-        // beside it as inside).
-        r[k] = h >= 0 || f == t ? 1.0 : 0.0;
-        dr[k] = 0;
-      }
+      r[k] = edge_ramp(e, k, u, f == t, &dr[k]);
       outside = !(r[k] > 0);
     }
     if (outside) continue;
