@@ -18,7 +18,6 @@
 namespace skinslide {
 namespace {
 
-
 // tan(angle/2) between e1 and e2 (of lengths l1, l2), from sin/(1 + cos): stable down to zero
 // angles.
 double half_angle_tangent(const Vec3& e1, const Vec3& e2, double l1, double l2) {

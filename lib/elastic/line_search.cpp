@@ -20,7 +20,6 @@ constexpr double kArmijo = 1e-4;
 // A signed area whose quadratic coefficient is below this share of the others' is linear.
 constexpr double kLinear = 1e-14;
 
-
 // The patch triangles with a corner that the step moves, ascending: only they can fold or turn.
 std::vector<Index> moving_triangles(const LineSearchPatch& patch, const StepCandidate& step) {
   const Chart& chart = patch.surface.chart;

@@ -34,10 +34,10 @@ struct ElasticOptions {
   double convergence = 5e-2;
   /// Bind time: relax on the frame's facets blended smooth near their edges (blended_surface.h),
   /// each edge's blend this share of its triangles' inradius wide (narrower next to slivers);
-  /// 0: on the facets. On the
-  /// facets a slid vertex's minimum sticks to chart edges and slips off them from frame to frame
-  /// (jitter in slow motion); 1 took the jitter of `scripts/quality.sh`'s slow swings down
-  /// 1.1-14x, at 1-3.4x the relax time (tests/bench/elastic.md "A blended surface").
+  /// 0: on the facets. On the facets a slid vertex's minimum sticks to chart edges and slips off
+  /// them from frame to frame (jitter in slow motion); 1 took the jitter of
+  /// `scripts/quality.sh`'s slow swings down 1.1-14x, at 1-3.4x the relax time
+  /// (tests/bench/elastic.md "A blended surface").
   double blend = 0;
 };
 

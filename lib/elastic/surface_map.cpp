@@ -13,7 +13,6 @@ namespace {
 // A point whose barycentric is at most this is on the triangle's edge.
 constexpr double kOnEdge = 1e-12;
 
-
 // How far direction d (non-zero) points into the wedge of patch triangle t at its corner v: the
 // smaller of the two normalised crosses with the wedge's edges, >= 0 inside.
 double wedge_score(const Chart& chart, Index t, Index v, const Vec2& d) {

@@ -82,7 +82,9 @@ void expect_through_every_frame_vertex(const Bumpy& m, double width_share) {
     }
 }
 
-TEST(BlendedSurface, PassesThroughEveryFrameVertex) { expect_through_every_frame_vertex(Bumpy(), 1.0); }
+TEST(BlendedSurface, PassesThroughEveryFrameVertex) {
+  expect_through_every_frame_vertex(Bumpy(), 1.0);
+}
 
 // A needle's or a cap's band lines meet far beyond its sharp corners: its weight must still be 0
 // at every node it does not touch, or the surface leaves the frame's vertices there.
