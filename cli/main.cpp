@@ -19,6 +19,7 @@
 #include "core/version.h"
 #include "compare.h"
 #include "exit_status.h"
+#include "io/run_inputs.h"
 #include "join.h"
 #include "skinslide.h"
 #include "progress.h"
@@ -87,5 +88,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return cli::parse_error_exit(app, e, "skinslide");
   }
+  // The --config file is an input too: no output may replace it (io/run_inputs.h).
+  const skinslide::InputScope inputs;
+  if (const CLI::Option* config = app.get_config_ptr(); config && config->count() > 0)
+    skinslide::note_input(config->results().front());
   return cli::exit_status("skinslide", [&] { return run_and_print(o); });
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -13,6 +14,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "io/run_inputs.h"
 
 namespace skinslide {
 namespace {
@@ -80,6 +82,14 @@ AtomicFile::AtomicFile(const std::string& path) : path_(path) {
   const fs::path target(path);
   std::error_code ec;
   if (fs::is_directory(target, ec)) throw_output(path, "it is a directory");
+  // rename() would replace a device, a pipe or a socket (/dev/null as root) with a plain file.
+  if (fs::exists(target, ec) && !fs::is_regular_file(target, ec))
+    throw_output(path,
+                 "it is not a regular file (a device, a pipe or a socket), which a whole-"
+                 "file write would replace");
+  if (const std::optional<std::string> input = noted_input(path))
+    throw_output(path, "it is an input of this run (" + *input +
+                           "), which the output would replace; choose another output folder");
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   // The temporary lives in the target folder so that rename() is atomic (same file system);
   // its name starts with '.' so a glob over the folder does not pick up a half-written file.
@@ -207,6 +217,7 @@ std::string read_file(const std::string& path) {
   // One bulk read into a string of the file's size: no stream buffers, no second copy.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw Error(ErrorKind::Input, path + ": cannot read: " + std::strerror(errno));
+  note_input(path);
   struct stat st {};
   std::string bytes;
   if (::fstat(fd, &st) == 0 && st.st_size > 0) bytes.resize(static_cast<size_t>(st.st_size));

@@ -10,7 +10,8 @@ namespace skinslide {
 /// A file written piece by piece that appears at `path` only when complete: a temporary file
 /// beside it takes the pieces (through a buffer) and commit() flushes, closes (each step checked)
 /// and renames it over `path`. Destroyed uncommitted (an error on the way), it removes the
-/// temporary and leaves `path` as it was. A crash leaves the old file or the new one.
+/// temporary and leaves `path` as it was. A crash leaves the old file or the new one. It never
+/// replaces a device, pipe or socket, nor a file the run read (run_inputs.h).
 class AtomicFile {
  public:
   /// \throw Error(Output) naming `path` and the system's reason.
@@ -60,7 +61,8 @@ void write_file_atomic(const std::string& path, std::string_view bytes);
 /// \throw Error(Output) naming `folder` and the system's reason.
 void sync_folder(const std::string& folder);
 
-/// Reads a whole file. \throw Error(Input) naming `path` when it cannot be read.
+/// Reads a whole file, noted as an input of the run (run_inputs.h).
+/// \throw Error(Input) naming `path` when it cannot be read.
 std::string read_file(const std::string& path);
 
 }  // namespace skinslide

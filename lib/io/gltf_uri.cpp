@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "io/gltf_buffer_uris.h"
+#include "io/run_inputs.h"
 
 namespace skinslide {
 namespace {
@@ -125,6 +126,7 @@ bool read_approved(std::vector<unsigned char>* out, std::string* err, const std:
     return false;
   }
   files.read.push_back(file->string());
+  note_input(file->string());
   return true;
 }
 

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/file_extension.h"
 #include "core/number_format.h"
+#include "io/run_inputs.h"
 
 namespace skinslide {
 namespace {
@@ -253,6 +254,7 @@ CacheReader::CacheReader(const std::string& path) : path_(path) {
   if (std::filesystem::is_directory(path, ec)) bad(path, "cannot read: it is a directory");
   fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd_ < 0) bad(path, std::string("cannot read: ") + std::strerror(errno));
+  note_input(path);
   try {
     header_ = read_header(*format);
   } catch (...) {

@@ -55,6 +55,11 @@ void refuse_cache_overwrite(const std::string& cache, const std::string& joined,
 void refuse_report_overwrite(const RunOptions& o, const std::vector<std::string>& inputs,
                              const std::vector<std::string>& outputs) {
   if (o.report.empty()) return;
+  std::error_code ec;
+  if (fs::exists(o.report, ec) && !fs::is_regular_file(o.report, ec))
+    throw Error(ErrorKind::Usage, "--report " + o.report +
+                                      " is not a regular file (a device, a pipe or a socket), "
+                                      "which writing the report would replace; name a file");
   for (const std::string& in : inputs)
     if (same_file(o.report, in))
       throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);

@@ -14,6 +14,7 @@
 #include "io/gltf.h"
 #include "io/mesh_formats.h"
 #include "io/patch_file.h"
+#include "io/run_inputs.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/controls.h"
 #include "pipeline/dumps.h"
@@ -85,6 +86,8 @@ std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunE
 }  // namespace
 
 RunResult run(const RunOptions& o, const RunEvents& events) {
+  // Whatever the run reads, no output of it replaces (io/run_inputs.h).
+  const InputScope inputs;
   const auto log = [&](const LogLine& line) {
     if (events.log) events.log(line);
   };

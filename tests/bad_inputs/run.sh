@@ -428,6 +428,66 @@ elif ! cmp -s $F "$tmp/inplace/$F" || [ -n "$(find "$tmp/inplace" -type f -newer
 else
   passed=$((passed + 1))
 fi
+# Side outputs (a glTF frame's buffer, dumps, previews) and outputs onto a --config file: an input
+# is never replaced, whichever output would land on it (io/run_inputs.h); exit 4, nothing of the
+# frame written. expect_kept NAME TEXT KEPT ARGS...: runs `skinslide ARGS`, KEPT is an input.
+expect_kept() {
+  local name=$1 text=$2 kept=$3
+  shift 3
+  cp "$kept" "$tmp/kept.bak"
+  "$bin" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local rc=$?
+  if [ "$rc" -ne 4 ] || ! grep -qF -- "$text" "$tmp/stderr"; then
+    fail "$name: exit $rc, stderr: $(cat "$tmp/stderr")"
+  elif ! cmp -s "$kept" "$tmp/kept.bak"; then
+    fail "$name: input $kept was replaced"
+  elif [ -n "$(find "$tmp/side" -name '.*.tmp.*')" ]; then
+    fail "$name: a temporary was left"
+  else
+    passed=$((passed + 1))
+  fi
+}
+mkdir -p "$tmp/side/cfg" "$tmp/side/dump" "$tmp/side/preview" "$tmp/side/X" "$tmp/side/Y"
+echo 'method = "elastic"' >"$tmp/side/cfg/grid.0001.obj"
+expect_kept output_onto_config "$tmp/side/cfg/grid.0001.obj: cannot write: it is an input of this run" \
+  "$tmp/side/cfg/grid.0001.obj" --config "$tmp/side/cfg/grid.0001.obj" -o "$tmp/side/cfg" --patch $P $B $F
+cp $P "$tmp/side/dump/bind.patch000.id.exr"
+expect_kept dump_onto_patch_file "$tmp/side/dump/bind.patch000.id.exr: cannot write: it is an input of this run" \
+  "$tmp/side/dump/bind.patch000.id.exr" -o "$tmp/side/out1" --dump "$tmp/side/dump" \
+  --patch "$tmp/side/dump/bind.patch000.id.exr" $B $F
+cp $P "$tmp/side/preview/grid.0001.patch000.png"
+expect_kept preview_onto_patch_file "$tmp/side/preview/grid.0001.patch000.png: cannot write: it is an input of this run" \
+  "$tmp/side/preview/grid.0001.patch000.png" -o "$tmp/side/out2" --preview "$tmp/side/preview" \
+  --patch "$tmp/side/preview/grid.0001.patch000.png" $B $F
+# The bind X/bind.gltf reads its buffer X/shared.bin; the frame Y/shared.gltf slid into X would
+# write X/shared.gltf and its buffer X/shared.bin.
+/usr/bin/python3 - quad.gltf "$tmp/side" <<'PY'
+import base64, json, sys
+g = json.load(open(sys.argv[1]))
+data = base64.b64decode(g["buffers"][0]["uri"].split(",", 1)[1])
+open(sys.argv[2] + "/X/shared.bin", "wb").write(data)
+json.dump(g, open(sys.argv[2] + "/Y/shared.gltf", "w"))
+g["buffers"][0]["uri"] = "shared.bin"
+json.dump(g, open(sys.argv[2] + "/X/bind.gltf", "w"))
+PY
+echo 0 1 >"$tmp/side/quad.txt"
+expect_kept gltf_buffer_onto_bind_buffer "$tmp/side/X/shared.bin: cannot write: it is an input of this run" \
+  "$tmp/side/X/shared.bin" -o "$tmp/side/X" --patch "$tmp/side/quad.txt" "$tmp/side/X/bind.gltf" "$tmp/side/Y/shared.gltf"
+if [ -e "$tmp/side/X/shared.gltf" ]; then fail "gltf_buffer_onto_bind_buffer: half a frame written"; fi
+# A report or an output that is a pipe (or a device: /dev/null as root) is not replaced by a file.
+mkfifo "$tmp/side/fifo.json"
+expect report_onto_fifo 2 "--report $tmp/side/fifo.json is not a regular file" --report "$tmp/side/fifo.json" --patch $P $B $F
+if [ ! -p "$tmp/side/fifo.json" ]; then fail "report_onto_fifo: the pipe was replaced"; fi
+mkdir -p "$tmp/side/out3"
+mkfifo "$tmp/side/out3/grid.0001.obj"
+"$bin" -o "$tmp/side/out3" --patch $P $B $F >"$tmp/stdout" 2>"$tmp/stderr"
+rc=$?
+if [ "$rc" -ne 4 ] || ! grep -qF "grid.0001.obj: cannot write: it is not a regular file" "$tmp/stderr" ||
+  [ ! -p "$tmp/side/out3/grid.0001.obj" ]; then
+  fail "output_onto_fifo: exit $rc, stderr: $(cat "$tmp/stderr")"
+else
+  passed=$((passed + 1))
+fi
 expect frame_unknown_format 2 "unknown mesh format '.ply'" --patch $P $B frame.0001.ply
 cp $F "$tmp/grid.0001.obj"
 expect frames_same_name 2 "two frames are named 'grid.0001.obj'" --patch $P $B $F "$tmp/grid.0001.obj"
