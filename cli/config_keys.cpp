@@ -111,6 +111,11 @@ void check_config_keys(const CLI::App& app) {
   const std::string path = config->results().front();
   std::ifstream in(path);
   if (!in) return;  // CLI11 names a file it cannot read
+  // CLI11 reads the mark as part of the first key: say what it is rather than show it.
+  if (in.peek() == 0xEF)
+    throw CLI::ConfigError(path +
+                           ":1: the file starts with a UTF-8 byte-order mark, which the config "
+                           "reader takes as part of the first key; save it without the mark");
   for (const ConfigKey& key : config_keys(in))
     if (!names_an_option(app, key))
       throw CLI::ConfigError(path + ":" + std::to_string(key.line) + ": unknown key '" +

@@ -1,6 +1,7 @@
 #include "io/obj_read.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string_view>
 
@@ -66,6 +67,23 @@ bool repeated_vertex(const std::vector<Index>& face, std::vector<Index>& scratch
   return true;
 }
 
+// A statement that was meant as a vertex or a face but is not spelled as one: skipped as an
+// unknown statement, it would shift every later vertex index (a face would then join the wrong
+// vertices, and no error would say so). OBJ keywords are lower case and end at a space.
+bool misspelt_vertex_or_face(std::string_view key) {
+  if (key.empty()) return false;
+  const char first = static_cast<char>(std::tolower(static_cast<unsigned char>(key[0])));
+  if (first != 'v' && first != 'f') return false;
+  std::string lower(key);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower != key &&
+      (lower == "v" || lower == "f" || lower == "vt" || lower == "vn" || lower == "vp"))
+    return true;  // `V`, `F`, `VN`, ...
+  const char second = key.size() > 1 ? key[1] : ' ';
+  return std::isdigit(static_cast<unsigned char>(second)) || second == '-' || second == '+' ||
+         second == '.';  // `v1.0 2 3`: no space after the keyword
+}
+
 std::string quoted(std::string_view t) {
   constexpr size_t kMax = 40;
   std::string s(t.substr(0, kMax));
@@ -81,9 +99,11 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
   std::vector<Index> face, scratch;
   std::vector<std::pair<long, long long>> forward_refs;  // (line, 1-based index)
   long line = 0;
-  size_t pos = 0;
   const size_t n = bytes.size();
   if (n == 0) throw_input(path, 0, "the file is empty (0 bytes): not an OBJ mesh");
+  // A UTF-8 byte-order mark (some Windows tools write one) is not part of the first statement;
+  // it stays in the text, so a rewritten frame keeps it.
+  size_t pos = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   size_t eol = 0;
   // One search of the whole text for a NUL byte, instead of one per line; the error still comes
   // when the parse reaches that line, after any error on the lines before it.
@@ -107,6 +127,11 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
     if (tok.back().text == "\\")
       throw_input(path, line, "line continuation '\\' is not supported; join the lines");
     const std::string_view key = tok[0].text;
+    if (misspelt_vertex_or_face(key))
+      throw_input(path, line,
+                  "unknown statement " + quoted(key) +
+                      ": OBJ keywords are lower case and end at a space (`v x y z`, `f a b c`); "
+                      "skipped, it would shift every later vertex index");
     if (key == "v") {
       if (tok.size() < 4)
         fail("vertex has " + count_of(tok.size() - 1, "coordinate", "coordinates") + "; 3 needed");

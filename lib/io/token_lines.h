@@ -20,13 +20,15 @@ inline bool is_list_separator(char c) {
 std::string quoted_token(std::string_view t);
 
 /// Calls f(line number, tokens) for every line of `text` (1-based; comments stripped; tokens may
-/// be empty). `kind` names the file in the NUL-byte error, e.g. "a patch file".
-/// \throw Error(Input) "path:line: binary data (NUL byte): not KIND"; whatever f throws.
+/// be empty; a leading UTF-8 byte-order mark skipped). `kind` names the file in the NUL-byte error,
+/// e.g. "a patch file". \throw Error(Input) "path:line: binary data (NUL byte): not KIND"; whatever
+/// f throws.
 template <typename F>
 void for_each_token_line(const std::string& path, const std::string& text, const char* kind,
                          F&& f) {
   long line = 0;
-  size_t pos = 0;
+  // A UTF-8 byte-order mark (some Windows tools write one) is not part of the first token.
+  size_t pos = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   std::vector<std::string_view> tokens;
   while (pos < text.size()) {
     ++line;

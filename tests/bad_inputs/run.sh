@@ -110,6 +110,23 @@ expect obj_inf 3 "inf.0001.obj:7: vertex coordinate '-inf' is not finite" --patc
 variant huge.0001.obj '7s/.*/v 1e999 1 0/' $F
 expect obj_overflowing_number 3 "huge.0001.obj:7: vertex coordinate '1e999' is not a number" --patch $P $B "$tmp/huge.0001.obj"
 
+# A statement meant as a vertex but misspelt would be skipped and shift every later index.
+variant upper.obj '7s/^v /V /'
+expect obj_upper_case_keyword 3 "upper.obj:7: unknown statement 'V': OBJ keywords are lower case" --patch $P "$tmp/upper.obj" $F
+variant nospace.obj '7s/^v /v/'
+expect obj_keyword_without_space 3 "nospace.obj:7: unknown statement 'v" --patch $P "$tmp/nospace.obj" $F
+# A UTF-8 byte-order mark (Windows tools) is not the first statement: the same slide as without,
+# and the rewritten frame keeps its mark.
+printf '\xEF\xBB\xBF' | cat - $B >"$tmp/bom.obj"
+printf '\xEF\xBB\xBF' | cat - $F >"$tmp/bom.0001.obj"
+printf '\xEF\xBB\xBF' | cat - $P >"$tmp/bom.txt"
+expect obj_byte_order_mark 0 "1 frames slid" --patch "$tmp/bom.txt" "$tmp/bom.obj" "$tmp/bom.0001.obj"
+expect obj_no_byte_order_mark 0 "1 frames slid" -o "$tmp/out/nobom" --patch $P $B "$tmp/bom.0001.obj"
+if ! cmp -s <(tail -c +4 "$tmp/out/obj_byte_order_mark/bom.0001.obj") <(tail -c +4 "$tmp/out/nobom/bom.0001.obj") ||
+  [ "$(head -c 3 "$tmp/out/obj_byte_order_mark/bom.0001.obj" | od -An -tx1 | tr -d ' ')" != efbbbf ]; then
+  fail "obj_byte_order_mark: not the slide without the mark, or the mark lost"
+fi
+
 # --- OBJ: faces --------------------------------------------------------------------------------
 variant zero.obj '18s/.*/f 0 2 6 5/'
 expect obj_face_index_0 3 "zero.obj:18: face index 0 (OBJ indices start at 1)" --patch $P "$tmp/zero.obj" $F
@@ -527,6 +544,8 @@ printf 'patch = ["all.txt"]\nmethod = "paper"\ntolerance = 0.1\n' >"$tmp/other.t
 expect config_other_methods_option 2 "--tolerance: applies to --method elastic only, not to --method paper" --config "$tmp/other.toml" $B $F
 printf '# every key an option\npatch = ["all.txt"]\nkeep-going\n[default]\nstrength = 0.5\n' >"$tmp/good.toml"
 expect config_keys_all_options 0 "1 frames slid" --config "$tmp/good.toml" $B $F
+printf '\xEF\xBB\xBF' | cat - "$tmp/good.toml" >"$tmp/bom.toml"
+expect config_byte_order_mark 2 "bom.toml:1: the file starts with a UTF-8 byte-order mark" --config "$tmp/bom.toml" $B $F
 
 echo "bad_inputs: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]
