@@ -1,5 +1,6 @@
 #include "command_line.h"
 
+#include <cmath>
 #include <map>
 #include <type_traits>
 #include <variant>
@@ -10,6 +11,19 @@
 
 namespace skinslide::cli {
 namespace {
+
+// CLI11's Range asks only "below low or above high?", which NaN is not: a number option must be a
+// number. (No description: --help shows the range alone.)
+CLI::Validator a_number() {
+  return CLI::Validator(
+      [](std::string& text) {
+        double x = 0;
+        return CLI::detail::lexical_cast(text, x) && std::isnan(x)
+                   ? "Value " + text + " is not a number"
+                   : std::string();
+      },
+      "");
+}
 
 const char* const kDescription =
     ": skin sliding for deformed character meshes.\n"
@@ -77,6 +91,7 @@ void add_inputs(CLI::App& app, CliOptions& o) {
   auto* fps = app.add_option("--fps", o.rig.fps,
                              "Sample the clip every 1/N s from its first key to its last; with "
                              "FRAME files and --format mdd, their rate (frame n at n/N s)")
+                  ->check(a_number())
                   ->check(CLI::Range(0.001, 100000.0))
                   ->type_name("N")
                   ->group(gl);
@@ -130,6 +145,7 @@ CLI::Option* add_table_option(CLI::App& app, const Option<Options>& option, Opti
         if constexpr (requires { value.member; }) {
           return app.add_option(name, options.*value.member, option.help)
               ->capture_default_str()
+              ->check(a_number())
               ->check(CLI::Range(value.low, value.high));
         } else {
           std::string& word = o.words[option.name] = value.get(options);

@@ -23,7 +23,7 @@ const OptionTable<ElasticOptions>& option_table<ElasticOptions>() {
       {"blend",
        "Elastic: relax on the frame's facets blended smooth near their edges, each edge's blend "
        "this share of its triangles' inradius wide (1: far less jitter in slow motion, up to 3x "
-       "the relax time); 0: on the facets. Slid vertices stay on the facets",
+       "the relax time); 0: on the facets; else at least 0.001. Slid vertices stay on the facets",
        NumberOption<O, double>{&O::blend, 0.0, 2.0}},
   };
   return table;

@@ -130,12 +130,16 @@ Vec3 steepest_descent(const FrameSurface& surface, Index node, const ChartPoint&
   return -lowest.slope * lowest.direction;
 }
 
-Vec3 blended_descent(const FrameSurface& surface, Index t, const Vec2& u, const Vec3& g) {
+// On the blended surface: the gradient's part in its tangent plane; where that plane cannot be had
+// (the slopes overflow, or the surface is crushed to a line there), the facets' one-sided descent,
+// so that a point is never read as stationary for want of a plane.
+Vec3 blended_descent(const FrameSurface& surface, Index t, const Vec2& u, const Vec3& g, Index node,
+                     const ChartPoint& where) {
   Mat32 J;
   blended_point(surface, t, u, &J);
   const Vec3 n = J.col(0).cross(J.col(1));
   const double length = n.norm();
-  if (!(length > 0) || !std::isfinite(length)) return Vec3::Zero();
+  if (!(length > 0) || !std::isfinite(length)) return steepest_descent(surface, node, where, g);
   const Vec3 unit = n / length;
   return -(g - unit * unit.dot(g));
 }
@@ -150,7 +154,8 @@ double stationarity(const FrameSurface& surface, const std::vector<Index>& movab
     const Index v = movable[i];
     const Vec3 d =
         surface.blend
-            ? blended_descent(surface, state.where[i].triangle, state.node_uv[v], gradient[v])
+            ? blended_descent(surface, state.where[i].triangle, state.node_uv[v], gradient[v],
+                              state.on_node[i] ? v : -1, state.where[i])
             : steepest_descent(surface, state.on_node[i] ? v : -1, state.where[i], gradient[v]);
     xy[i] = Vec2(d.x(), d.y());
     z0[i] = Vec2(d.z(), 0);

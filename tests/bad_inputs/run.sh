@@ -538,6 +538,10 @@ printf 'patch = ["all.txt",\n         "all.txt"]\nq_floor = 0.01\n' >"$tmp/array
 expect config_key_after_an_array 2 "array.toml:3: unknown key 'q_floor'; the nearest option is 'q-floor'" --config "$tmp/array.toml" $B $F
 printf 'patch = ["all.txt"]\ntolerance = 5\n' >"$tmp/range.toml"
 expect config_value_out_of_range 2 "--tolerance: Value 5 not in range 0.000000 to 1.000000" --config "$tmp/range.toml" $B $F
+# CLI11's ranges let NaN through; bands narrower than round-off read as converged: refused.
+expect option_nan 2 "--convergence: Value nan is not a number" --convergence nan --patch $P $B $F
+expect option_nan_blend 2 "--blend: Value NaN is not a number" --blend NaN --patch $P $B $F
+expect blend_below_round_off 2 "--blend 1e-100: bands this narrow are below round-off; use 0 (the facets) or 0.001 to 2" --blend 1e-100 --patch $P $B $F
 printf 'patch = ["all.txt"]\nmethod = "paper"\ndensity = "papr"\n' >"$tmp/word.toml"
 expect config_value_not_a_word 2 "--density: papr not in {paper,inverse,length,uniform}" --config "$tmp/word.toml" $B $F
 printf 'patch = ["all.txt"]\nmethod = "paper"\ntolerance = 0.1\n' >"$tmp/other.toml"

@@ -138,6 +138,8 @@ def test_errors_raise_with_their_kinds(tmp_path):
         (lambda: make(density="paper"), skinslide.UsageError, "applies to method 'paper'"),
         (lambda: make(method="sideways"), skinslide.UsageError, "unknown method"),
         (lambda: make(tolerance=2.0), skinslide.UsageError, "tolerance"),
+        (lambda: make(convergence=float("nan")), skinslide.UsageError, "convergence"),
+        (lambda: make(blend=1e-9), skinslide.UsageError, "below round-off"),
         (lambda: make(frobnicate=1), skinslide.UsageError, "unknown option frobnicate"),
         (lambda: make(pins=[10**6]), skinslide.UsageError, "out of range"),
         (lambda: skinslide.Slider(positions, face_vertices, [10**6], face_sizes=face_sizes),
