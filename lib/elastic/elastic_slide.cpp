@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "elastic/surface_map.h"
 #include "mesh/measures.h"
 
 namespace skinslide {
@@ -20,6 +21,39 @@ int turned_triangles(const Patch& patch, const Positions3& frame, const Position
     turned += turned_against(ns, nf) ? 1 : 0;
   }
   return turned;
+}
+
+// Rule 11's weights move a vertex part of its way in the chart, and a triangle between a vertex
+// that goes all of its way and one that goes part can fold (orientation is not convex in the
+// corners): the moving corners of a slid triangle folded in the chart, or turned against its frame
+// triangle, go back to the frame, until none is (at the frame nothing is). Returns how many.
+int hold_weighted_folds(const ElasticSetup& setup, const Patch& patch, const Positions3& frame,
+                        std::vector<ChartPoint>& where, Positions2& uv, Positions3& output) {
+  const Chart& chart = setup.chart;
+  const auto chart_point = [&](Index v) {
+    const Index i = setup.movable_slot[v];
+    return i >= 0 ? uv[i] : chart.uv[v];
+  };
+  int held = 0;
+  for (bool any = true; any;) {
+    any = false;
+    for (const Triangle& t : patch.triangles) {
+      const Vec2 a = chart_point(t[0]);
+      const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
+      const Vec3 ns = (output[t[1]] - output[t[0]]).cross(output[t[2]] - output[t[0]]);
+      if (cross2(chart_point(t[1]) - a, chart_point(t[2]) - a) > 0 && !turned_against(ns, nf))
+        continue;
+      for (Index v : t)
+        if (const Index i = setup.movable_slot[v]; i >= 0 && output[v] != frame[v]) {
+          uv[i] = chart.uv[v];
+          where[i] = at_node(chart, v);
+          output[v] = frame[v];
+          ++held;
+          any = true;
+        }
+    }
+  }
+  return held;
 }
 
 }  // namespace
@@ -62,28 +96,33 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   slid.frame_in_bind_net = true;
   slid.placed = static_cast<Index>(setup.movable.size());
   Positions3 output = points;
-  for (size_t i = 0; i < setup.movable.size(); ++i) {
+  const size_t m = setup.movable.size();
+  std::vector<ChartPoint> where = relaxed.where;
+  Positions2 uv = relaxed.uv;
+  for (size_t i = 0; i < m; ++i) {
     const Index v = setup.movable[i];
     const double w = weight.empty() ? 1.0 : weight[patch.vertices[v]];
-    ChartPoint where = relaxed.where[i];
-    Vec2 uv = relaxed.uv[i];
     Vec3 p = relaxed.position[i];
     if (w != 1) {
-      uv = chart.uv[v] + w * (uv - chart.uv[v]);
-      where = locate_in_chart(chart, uv, where.triangle);
-      const Triangle& tri = chart.triangles[where.triangle];
-      p = where.weight[0] * points[tri[0]] + where.weight[1] * points[tri[1]] +
-          where.weight[2] * points[tri[2]];
+      uv[i] = chart.uv[v] + w * (uv[i] - chart.uv[v]);
+      where[i] = locate_in_chart(chart, uv[i], where[i].triangle);
+      const Triangle& tri = chart.triangles[where[i].triangle];
+      p = where[i].weight[0] * points[tri[0]] + where[i].weight[1] * points[tri[1]] +
+          where[i].weight[2] * points[tri[2]];
     }
     if (!p.allFinite())
       throw Error(ErrorKind::Numeric, "vertex " + std::to_string(patch.vertices[v]) +
                                           ": the slid position is not finite");
-    slid.net[v] = uv;
     output[v] = p;
+  }
+  if (!weight.empty()) report.held += hold_weighted_folds(setup, patch, points, where, uv, output);
+  for (size_t i = 0; i < m; ++i) {
+    const Index v = setup.movable[i];
+    slid.net[v] = uv[i];
     slid.vertex.push_back(v);
-    slid.triangle.push_back(where.triangle);
-    slid.weight.push_back(where.weight);
-    slid.position.push_back(p);
+    slid.triangle.push_back(where[i].triangle);
+    slid.weight.push_back(where[i].weight);
+    slid.position.push_back(output[v]);
   }
   report.slid_flips = turned_triangles(patch, points, output);
   // The elastic frame is looked up in the fixed chart: its ID image is the chart's.
