@@ -12,17 +12,6 @@
 namespace skinslide {
 namespace {
 
-// Slid triangles whose normal turns against the frame's own (frame triangles with area only).
-int turned_triangles(const Patch& patch, const Positions3& frame, const Positions3& slid) {
-  int turned = 0;
-  for (const Triangle& t : patch.triangles) {
-    const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
-    const Vec3 ns = (slid[t[1]] - slid[t[0]]).cross(slid[t[2]] - slid[t[0]]);
-    turned += turned_against(ns, nf) ? 1 : 0;
-  }
-  return turned;
-}
-
 // Rule 11's weights move a vertex part of its way in the chart, and a triangle between a vertex
 // that goes all of its way and one that goes part can fold (orientation is not convex in the
 // corners): the moving corners of a slid triangle folded in the chart, or turned against its frame
@@ -124,7 +113,7 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
     slid.weight.push_back(where[i].weight);
     slid.position.push_back(output[v]);
   }
-  report.slid_flips = turned_triangles(patch, points, output);
+  report.slid_flips = turned_triangles(patch.triangles, points, output);
   // The elastic frame is looked up in the fixed chart: its ID image is the chart's.
   if (id_image_size > 0) slid.id_image = id_raster(patch.bind_net, patch.triangles, id_image_size);
   return result;

@@ -1,5 +1,7 @@
 #include "mesh/measures.h"
 
+#include <Eigen/Geometry>
+
 namespace skinslide {
 
 std::vector<double> bar_lengths(const Positions3& points,
@@ -39,6 +41,17 @@ bool turned_against(const Vec3& slid, const Vec3& frame) {
   const double slid_size = slid.cwiseAbs().maxCoeff();
   if (!(slid_size > 0)) return true;
   return !((slid / slid_size).dot(frame / frame_size) > 0);
+}
+
+int turned_triangles(const std::vector<Triangle>& triangles, const Positions3& frame,
+                     const Positions3& slid) {
+  int turned = 0;
+  for (const Triangle& t : triangles) {
+    const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
+    const Vec3 ns = (slid[t[1]] - slid[t[0]]).cross(slid[t[2]] - slid[t[0]]);
+    turned += turned_against(ns, nf) ? 1 : 0;
+  }
+  return turned;
 }
 
 }  // namespace skinslide

@@ -32,4 +32,9 @@ int flipped_triangles(const Positions2& net, const std::vector<Triangle>& triang
 /// has it as turned.
 bool turned_against(const Vec3& slid, const Vec3& frame);
 
+/// Triangles turned against their frame triangle (turned_against) when `frame`'s vertices move to
+/// `slid` (both #V of the mesh or of the patch, as `triangles` index them): a slide's folds.
+int turned_triangles(const std::vector<Triangle>& triangles, const Positions3& frame,
+                     const Positions3& slid);
+
 }  // namespace skinslide

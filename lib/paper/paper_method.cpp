@@ -83,7 +83,8 @@ Figures report_figures(const PaperReport& r) {
           {"direct_solve", r.direct_solve},
           {"located_in_image", static_cast<long long>(r.located_in_image)},
           {"located_fallback", static_cast<long long>(r.located_fallback)},
-          {"frame_net_flips", static_cast<long long>(r.frame_net_flips)}};
+          {"frame_net_flips", static_cast<long long>(r.frame_net_flips)},
+          {"flips", static_cast<long long>(r.slid_flips)}};
 }
 
 void PaperTotals::add(const PaperReport& r) {
@@ -91,23 +92,26 @@ void PaperTotals::add(const PaperReport& r) {
   direct_solves += r.direct_solve;
   fallbacks += r.located_fallback;
   frame_net_flips += r.frame_net_flips;
+  flips += r.slid_flips;
 }
 
 Figures PaperTotals::figures() const {
   return {{"cg_iterations", cg_iterations},
           {"direct_solves", direct_solves},
           {"fallbacks", fallbacks},
-          {"frame_net_flips", frame_net_flips}};
+          {"frame_net_flips", frame_net_flips},
+          {"flips", flips}};
 }
 
 std::string frame_summary(const PaperMethod& method, const std::vector<Patch>& patches,
                           const std::function<const PaperReport&(std::size_t)>& report,
                           const std::string& max_slide) {
   std::vector<std::pair<FrameNetMethod, int>> used;
-  int fallbacks = 0;
+  int fallbacks = 0, flips = 0;
   for (std::size_t p = 0; p < patches.size(); ++p) {
     const PaperReport& r = report(p);
     fallbacks += r.located_fallback;
+    flips += r.slid_flips;
     if (patches[p].skipped) continue;
     const FrameNetMethod solver = method.patches[p].solver->method();
     auto it =
@@ -119,7 +123,7 @@ std::string frame_summary(const PaperMethod& method, const std::vector<Patch>& p
   for (const auto& [solver, iterations] : used)
     text += (text.empty() ? "" : " + ") + solver_label(solver, iterations);
   return (used.empty() ? std::string("no frame net") : text) + max_slide + ", " +
-         std::to_string(fallbacks) + " fallbacks";
+         std::to_string(fallbacks) + " fallbacks, flips " + std::to_string(flips);
 }
 
 std::string patch_summary(const PaperMethod& method, std::size_t p, const PaperReport& r) {
@@ -128,7 +132,8 @@ std::string patch_summary(const PaperMethod& method, std::size_t p, const PaperR
          (solver == FrameNetMethod::Cholesky ? "" : ", residual " + log_number(r.cg_residual)) +
          (r.direct_solve ? " (solved directly)" : "") + ", located " +
          std::to_string(r.located_in_image) + " + " + std::to_string(r.located_fallback) +
-         " fallback, net flips " + std::to_string(r.frame_net_flips);
+         " fallback, net flips " + std::to_string(r.frame_net_flips) + ", flips " +
+         std::to_string(r.slid_flips);
 }
 
 }  // namespace skinslide

@@ -50,13 +50,13 @@ std::string method_label(const PaperMethod& method);
 Figures patch_figures(const PaperMethod& method, std::size_t p, const Patch& patch);
 
 /// A patch's figures in one frame: cg_iterations, cg_residual, direct_solve, located_in_image,
-/// located_fallback, frame_net_flips.
+/// located_fallback, frame_net_flips, flips (slid triangles turned against the frame's).
 Figures report_figures(const PaperReport& report);
 
 /// The report's sums over every patch of every frame: cg_iterations, direct_solves, fallbacks,
-/// frame_net_flips.
+/// frame_net_flips, flips.
 struct PaperTotals {
-  long long cg_iterations = 0, direct_solves = 0, fallbacks = 0, frame_net_flips = 0;
+  long long cg_iterations = 0, direct_solves = 0, fallbacks = 0, frame_net_flips = 0, flips = 0;
   void add(const PaperReport& report);
   Figures figures() const;
 };

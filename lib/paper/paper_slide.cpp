@@ -203,6 +203,7 @@ PaperSlide paper_slide(const PaperSetup& setup, const Patch& patch, const Positi
                         : id_raster(slid.net, patch.triangles, id_image_size);
 
   slid.placed = static_cast<Index>(where.size());
+  Positions3 output = points;
   for (size_t k = 0; k < where.size(); ++k) {
     const Location& loc = where[k];
     (loc.fallback ? report.located_fallback : report.located_in_image) += 1;
@@ -222,7 +223,10 @@ PaperSlide paper_slide(const PaperSetup& setup, const Patch& patch, const Positi
     slid.triangle.push_back(loc.triangle);
     slid.weight.push_back(loc.weight);
     slid.position.push_back(p);
+    output[v] = p;
   }
+  // The paper's nets may fold where the frame's bars fold; never in silence.
+  report.slid_flips = turned_triangles(patch.triangles, points, output);
   return result;
 }
 

@@ -65,6 +65,7 @@ struct PaperReport {
   int located_in_image = 0;   ///< vertices found through the ID image or the walk
   int located_fallback = 0;   ///< vertices found by the nearest-triangle fallback
   int frame_net_flips = 0;    ///< frame-net triangles of the minority orientation
+  int slid_flips = 0;  ///< slid triangles turned against the frame's (the frame's with area only)
 };
 
 struct PaperSlide {

@@ -129,6 +129,7 @@ void mark_at_rest(MethodReport& report) {
     elastic->slid_flips = 0;
     elastic->gain_left = 0;
   }
+  if (auto* paper = std::get_if<PaperReport>(&report)) paper->slid_flips = 0;
 }
 
 std::string convergence_fault(const MethodReport& report) {

@@ -89,9 +89,12 @@ assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "p
                    "totals", "timings"], list(r)
 assert [f["path"] for f in r["frames"]] == ["data/elbow/frames/elbow.000%d.obj" % k for k in range(1, 6)]
 keys = ["cg_iterations", "cg_residual", "direct_solve", "located_in_image", "located_fallback",
-        "frame_net_flips", "at_rest", "moved", "max_slide", "mean_slide", "spread_frame", "spread_slid"]
+        "frame_net_flips", "flips", "at_rest", "moved", "max_slide", "mean_slide", "spread_frame",
+        "spread_slid"]
 for f in r["frames"]:
     assert list(f["patches"][0]) == keys, list(f["patches"][0])
+    assert f["patches"][0]["flips"] == 0
+assert r["totals"]["flips"] == 0
 last = r["frames"][-1]["patches"][0]
 assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and not last["direct_solve"]
 assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
