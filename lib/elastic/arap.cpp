@@ -41,8 +41,8 @@ Mat32 deformation_gradient(const Positions3& x, const Triangle& t, const Eigen::
   return e * D;
 }
 
-RotationFit fit_rotation(const Mat32& J, double s, const Vec3& frame_normal) {
-  RotationFit out;
+SingularFrame singular_frame(const Mat32& J, const Vec3& frame_normal) {
+  SingularFrame out;
   const double a = J.col(0).squaredNorm(), b = J.col(0).dot(J.col(1)), c = J.col(1).squaredNorm();
   const double tr = a + c;
   // The eigenvalues of J^T J, each to round-off: the energy of a frame at rest is then round-off
@@ -51,22 +51,48 @@ RotationFit fit_rotation(const Mat32& J, double s, const Vec3& frame_normal) {
   const double l1 = 0.5 * tr + half_gap;
   const double det = std::max(a * c - b * b, 0.0);
   const double l2 = l1 > 0 ? det / l1 : 0.0;
-  const double s1 = std::sqrt(l1), s2 = std::sqrt(l2);
-  out.energy = (s1 - s) * (s1 - s) + (s2 - s) * (s2 - s);
+  out.s1 = std::sqrt(l1);
+  out.s2 = std::sqrt(l2);
   if (!(tr > 0)) return out;
-  // R = U V^T from J's singular vectors; with J of rank one, U's second column lies in the
-  // frame's tangent plane.
+  // J's singular vectors; with J of rank one, u2 lies in the frame's tangent plane.
   Vec2 v1 = std::abs(b) > 0 ? Vec2(b, l1 - a) : (a >= c ? Vec2(1, 0) : Vec2(0, 1));
   v1.normalize();
-  const Vec2 v2(-v1.y(), v1.x());
-  const Vec3 u1 = J * v1 / s1;
-  Vec3 u2 = Vec3::Zero();
-  if (s2 > kRankOne * s1) {
-    u2 = J * v2 / s2;
+  out.v1 = v1;
+  out.v2 = Vec2(-v1.y(), v1.x());
+  out.u1 = J * out.v1 / out.s1;
+  if (out.s2 > kRankOne * out.s1) {
+    out.u2 = J * out.v2 / out.s2;
   } else if (const double nn = frame_normal.norm(); nn > 0) {
-    u2 = frame_normal.cross(u1) / nn;
+    out.u2 = frame_normal.cross(out.u1) / nn;
   }
-  out.rotation = u1 * v1.transpose() + u2 * v2.transpose();
+  out.found = true;
+  return out;
+}
+
+RotationFit fit_rotation(const Mat32& J, double s, const Vec3& frame_normal) {
+  RotationFit out;
+  const SingularFrame f = singular_frame(J, frame_normal);
+  out.energy = (f.s1 - s) * (f.s1 - s) + (f.s2 - s) * (f.s2 - s);
+  if (f.found) out.rotation = f.u1 * f.v1.transpose() + f.u2 * f.v2.transpose();
+  return out;
+}
+
+TriangleCurvature arap_curvature(const Mat32& J, double s, const Vec3& frame_normal) {
+  TriangleCurvature out;
+  const SingularFrame f = singular_frame(J, frame_normal);
+  if (!f.found || f.u2.isZero(0)) return out;
+  const Vec3 n = f.u1.cross(f.u2);
+  // The modes whose stiffness the rotation's refit takes away, and the share it takes: a twist in
+  // J's plane, 2 s / (s1 + s2), and each column turning out of it, s / s_k (Smith et al. 2019,
+  // "Analytic Eigensystems for Isotropic Distortion Energies"), at most all of it (the
+  // projection to a semi-definite curvature).
+  out.mode[0] = (f.u1 * f.v2.transpose() - f.u2 * f.v1.transpose()) / std::sqrt(2.0);
+  out.mode[1] = n * f.v1.transpose();
+  out.mode[2] = n * f.v2.transpose();
+  const double sum = f.s1 + f.s2;
+  out.softening[0] = sum > 0 ? std::min(1.0, 2 * s / sum) : 1.0;
+  out.softening[1] = f.s1 > 0 ? std::min(1.0, s / f.s1) : 1.0;
+  out.softening[2] = f.s2 > 0 ? std::min(1.0, s / f.s2) : 1.0;
   return out;
 }
 

@@ -26,6 +26,16 @@ std::array<Vec2, 3> gradient_rows(const Eigen::Matrix2d& D);
 /// J of triangle `t` at positions `x` (indexed by the triangle's ids).
 Mat32 deformation_gradient(const Positions3& x, const Triangle& t, const Eigen::Matrix2d& D);
 
+/// J = s1 u1 v1^T + s2 u2 v2^T (s1 >= s2 >= 0); `found` false for J = 0. A J of rank one takes
+/// u2 in the plane normal to `frame_normal` (zero if that is zero).
+struct SingularFrame {
+  double s1 = 0, s2 = 0;
+  Vec3 u1 = Vec3::Zero(), u2 = Vec3::Zero();
+  Vec2 v1 = Vec2::Zero(), v2 = Vec2::Zero();
+  bool found = false;
+};
+SingularFrame singular_frame(const Mat32& J, const Vec3& frame_normal);
+
 /// The rotation nearest J (3x2 with orthonormal columns: ARAP's local step) and the ARAP energy
 /// (s1 - s)^2 + (s2 - s)^2 of J's singular values, which is |J - s R|^2 for that R. A J of rank
 /// one takes R's second column in the plane normal to `frame_normal`.
@@ -34,6 +44,21 @@ struct RotationFit {
   Mat32 rotation = Mat32::Zero();
 };
 RotationFit fit_rotation(const Mat32& J, double s, const Vec3& frame_normal);
+
+/// The ARAP energy's second derivative in J with the rotation refitted (min_R |J - s R|^2), made
+/// semi-definite: 2 (I - sum_m softening_m mode_m (x) mode_m) over J's entries, the three modes
+/// orthonormal. Zero softening (the held-rotation curvature 2 I) for J = 0.
+struct TriangleCurvature {
+  std::array<Mat32, 3> mode{Mat32::Zero(), Mat32::Zero(), Mat32::Zero()};
+  std::array<double, 3> softening{0, 0, 0};
+  /// The curvature times dJ, per unit weight.
+  Mat32 times(const Mat32& dJ) const {
+    Mat32 out = 2 * dJ;
+    for (int m = 0; m < 3; ++m) out -= 2 * softening[m] * mode[m].cwiseProduct(dJ).sum() * mode[m];
+    return out;
+  }
+};
+TriangleCurvature arap_curvature(const Mat32& J, double s, const Vec3& frame_normal);
 
 /// The triangles and rest shapes the energy sums over, with every triangle's weight.
 struct ArapTriangles {

@@ -85,8 +85,9 @@ class Relaxation {
 
   // Rule 10's first-order measure at the current state, for the rotations last fitted (which
   // minimise the energy there: g_ is the ARAP energy's own gradient).
-  double measure() const {
-    return stationarity(surface_, setup_.movable, state_, g_, setup_.metric);
+  FirstOrderGain measure() const {
+    return stationarity(surface_, setup_.movable, state_, g_, setup_.metric,
+                        CurvatureInputs{mesh_, s_, setup_.movable_slot});
   }
 
   // One step: false when no step lowers the energy, or the direction could not be solved.
@@ -272,13 +273,18 @@ void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, Elastic
   ElasticStop last_round = relax_pass(relaxation, options, result);
   for (;;) {
     relaxation.fit_rotations();
-    result.gain_left = relaxation.measure();
-    const bool stationary = result.gain_left <= options.convergence * result.energy_before;
-    if (stationary && !relaxation.failed()) {
+    const FirstOrderGain gain = relaxation.measure();
+    const double tolerance = options.convergence * result.energy_before;
+    result.gain_left = gain.larger();
+    if (result.gain_left <= tolerance && !relaxation.failed()) {
       result.stop = ElasticStop::Converged;
       return;
     }
     result.stop = last_round;
+    // The escalation was tuned on the bind's metric alone: a frame it finds stationary is not
+    // relaxed again, so that the curvature's reading changes the stop's name, not the slide (the
+    // slow swings' frames it would escalate jitter more after).
+    if (gain.bind_metric <= tolerance) return;
     const int budget = relaxation.direction_budget() * kBudgetGrowth;
     // Only a stall is escalated: a round that ran to --max-iterations did what it was asked.
     if (last_round != ElasticStop::SmallGain || !relaxation.directions_unsolved() ||
@@ -407,7 +413,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     ElasticResult scratch;
     Relaxation at_frame(setup, surface, s, scratch);
     at_frame.fit_rotations();
-    result.gain_left = at_frame.measure();
+    result.gain_left = at_frame.measure().larger();
     return result;
   }
   for (Index i = 0; i < m; ++i) {

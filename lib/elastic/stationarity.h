@@ -10,24 +10,44 @@
 // stationary exactly when every vertex's descent is zero.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "core/types.h"
+#include "elastic/arap.h"
 #include "elastic/line_search.h"
 #include "elastic/step_direction.h"
 
 namespace skinslide {
 
-/// The first-order gain left: with rho_i each moving vertex's steepest one-sided descent
-/// (steepest_descent), 1/2 rho^T (K x I3)^-1 rho in the bind's metric K: what a Newton step with
-/// the bind's stiffness would gain along the descents, the patch's long, smooth modes included
-/// (a vertex-by-vertex sum, rho_i^2 / 2 K_ii, missed them by the metric's condition number:
-/// whole heads 11-24% above their reference read under 1%). An energy: compare it with the
-/// frame's. Zero exactly at a stationary point.
+/// What the energy's own curvature needs: its triangles, its stretch s, and per patch vertex
+/// (local id) its movable index or -1.
+struct CurvatureInputs {
+  const ArapTriangles& mesh;
+  double scale = 1;
+  const std::vector<Index>& movable_slot;
+};
+
+/// The first-order gain left, with rho_i each moving vertex's steepest one-sided descent
+/// (steepest_descent): two estimates of what a Newton step along the descents would gain, each
+/// an energy (compare it with the frame's), both zero exactly at a stationary point.
+struct FirstOrderGain {
+  /// In the bind's metric K, 1/2 rho^T (K x I3)^-1 rho: the patch's long, smooth modes included
+  /// (a vertex-by-vertex sum, rho_i^2 / 2 K_ii, missed them by the metric's condition number).
+  double bind_metric = 0;
+  /// With the energy's own curvature H (the rotations refitted, arap_curvature) in the frame's
+  /// smooth tangent planes, 1/2 b^T (Q^T H Q)^-1 b with b = Q^T rho, by conjugate gradients
+  /// preconditioned by K's factor. H is softer than K where triangles may turn (bending, a
+  /// twist): there the bind's metric read 0.3-0.6x what further rotation fits reach (a whole
+  /// head 5% of its frame's energy where 11% was left), this one 0.7-1x (the head 8.4%).
+  double curvature = 0;
+  double larger() const { return std::max(bind_metric, curvature); }
+};
+
 /// \param gradient the energy's 3D gradient per patch vertex (local ids) at `state`.
-double stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
-                    const SlideState& state, const Positions3& gradient,
-                    const ElasticMetric& metric);
+FirstOrderGain stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
+                            const SlideState& state, const Positions3& gradient,
+                            const ElasticMetric& metric, const CurvatureInputs& curvature);
 
 /// The steepest first-order descent of a point moving on the faceted surface from chart point
 /// `where` (at chart node `node` when >= 0) against the 3D gradient g: rate times unit direction,

@@ -296,7 +296,7 @@ assert [f['patches'][0]['converged'] for f in r['frames']] == [True] * 4 + [Fals
 assert r['totals']['not_converged'] == 1" "$tmp/c1.json"
 check "the summary counts the frames that did not converge" grep -q '5 frames slid (1 not converged) in' "$tmp/c1.log"
 check "--require-converged fails the first such frame (5), naming it and its patch" fails_with 5 \
-  "data/elbow/frames/elbow.0002.obj: patch 0: did not converge (small gain, first-order gain left 0.1" \
+  "data/elbow/frames/elbow.0002.obj: patch 0: did not converge (small gain, first-order gain left 0.2" \
   -j 1 --require-converged --convergence 0.001 "${elbow[@]}" -o "$tmp/c2"
 check "... and writes nothing of it" test ! -e "$tmp/c2/elbow.0002.obj"
 check "--require-converged passes where every frame converged" \
