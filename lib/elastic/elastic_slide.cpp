@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "elastic/line_search.h"
 #include "elastic/surface_map.h"
 #include "mesh/measures.h"
 
@@ -27,10 +28,9 @@ int hold_weighted_folds(const ElasticSetup& setup, const Patch& patch, const Pos
   for (bool any = true; any;) {
     any = false;
     for (const Triangle& t : patch.triangles) {
-      const Vec2 a = chart_point(t[0]);
       const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
       const Vec3 ns = (output[t[1]] - output[t[0]]).cross(output[t[2]] - output[t[0]]);
-      if (cross2(chart_point(t[1]) - a, chart_point(t[2]) - a) > 0 && !turned_against(ns, nf))
+      if (!slid_triangle_folds(chart_point(t[0]), chart_point(t[1]), chart_point(t[2]), ns, nf))
         continue;
       for (Index v : t)
         if (const Index i = setup.movable_slot[v]; i >= 0 && output[v] != frame[v]) {

@@ -46,11 +46,10 @@ Vec3 written(const LineSearchPatch& patch, const SlideState& s, Index v) {
 // has area): where the relaxation sees it and, on a blended surface, where it is written too.
 bool folds(const LineSearchPatch& patch, const SlideState& s, Index t) {
   const Triangle& tri = patch.surface.chart.triangles[t];
-  const Vec2& a = s.node_uv[tri[0]];
-  if (!(cross2(s.node_uv[tri[1]] - a, s.node_uv[tri[2]] - a) > 0)) return true;
   const Vec3& frame_normal = patch.surface.normals[t];
   const Vec3 n = (s.x[tri[1]] - s.x[tri[0]]).cross(s.x[tri[2]] - s.x[tri[0]]);
-  if (turned_against(n, frame_normal)) return true;
+  if (slid_triangle_folds(s.node_uv[tri[0]], s.node_uv[tri[1]], s.node_uv[tri[2]], n, frame_normal))
+    return true;
   if (!patch.surface.blend) return false;
   const Vec3 p0 = written(patch, s, tri[0]);
   const Vec3 n_written = (written(patch, s, tri[1]) - p0).cross(written(patch, s, tri[2]) - p0);
@@ -118,6 +117,11 @@ class Trial {
 };
 
 }  // namespace
+
+bool slid_triangle_folds(const Vec2& a, const Vec2& b, const Vec2& c, const Vec3& slid_normal,
+                         const Vec3& frame_normal) {
+  return !(cross2(b - a, c - a) > 0) || turned_against(slid_normal, frame_normal);
+}
 
 double fold_root(const Chart& chart, const Positions2& node_uv, const Positions2& node_d, Index t) {
   const Triangle& tri = chart.triangles[t];

@@ -52,6 +52,13 @@ struct LineSearchResult {
   SlideState state;      ///< the new state when accepted
 };
 
+/// A slid triangle folds: turned over in the chart (its corners' chart points a, b, c, in the
+/// triangle's order), or its slid normal turned against its frame triangle's (turned_against;
+/// never where the frame triangle has no area). The line search (rule 9) and the weights (rule
+/// 11) hold moving corners until no slid triangle folds.
+bool slid_triangle_folds(const Vec2& a, const Vec2& b, const Vec2& c, const Vec3& slid_normal,
+                         const Vec3& frame_normal);
+
 /// The smallest positive step along `node_d` (per chart node) at which chart triangle t's signed
 /// area vanishes (Smith & Schaefer 2015), infinite when none.
 double fold_root(const Chart& chart, const Positions2& node_uv, const Positions2& node_d, Index t);
