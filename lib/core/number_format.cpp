@@ -1,7 +1,9 @@
 #include "core/number_format.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <limits>
 
 namespace skinslide {
 
@@ -26,13 +28,52 @@ std::string log_number(double x) {
   return buf;
 }
 
+namespace {
+
+// The value of a decimal number that std::from_chars read whole but found out of range: zero
+// when it is nearer to 0 than the smallest subnormal (1e-400), infinity when beyond the largest
+// double (1e999), with its sign, as strtod reads them. Which one is told by the power of ten of
+// its first significant digit: digits before the point, or minus the zeros after it, plus the
+// exponent.
+double out_of_range_value(std::string_view text) {
+  const bool negative = text.front() == '-';
+  if (negative) text.remove_prefix(1);
+  const size_t e = std::min(text.find_first_of("eE"), text.size());
+  long long magnitude = 0;
+  bool significant = false, fraction = false;
+  for (size_t i = 0; i < e; ++i) {
+    if (text[i] == '.') {
+      fraction = true;
+    } else if (significant || text[i] != '0') {
+      significant = true;
+      if (!fraction) ++magnitude;
+    } else if (fraction) {
+      --magnitude;
+    }
+  }
+  // The exponent saturates: any exponent this far from 0 decides the side on its own.
+  constexpr long long kExponentCap = 1'000'000'000;
+  long long exponent = 0;
+  const bool negative_exponent = e + 1 < text.size() && text[e + 1] == '-';
+  for (size_t i = e + 1; i < text.size(); ++i)
+    if (text[i] >= '0' && text[i] <= '9')
+      exponent = std::min(kExponentCap, exponent * 10 + (text[i] - '0'));
+  magnitude += negative_exponent ? -exponent : exponent;
+  const double x = magnitude > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+  return negative ? -x : x;
+}
+
+}  // namespace
+
 std::optional<double> parse_double(std::string_view text) {
   // from_chars rejects a leading '+', which some exporters write.
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   if (text.empty()) return std::nullopt;
   double x = 0;
   const auto r = std::from_chars(text.data(), text.data() + text.size(), x);
-  if (r.ec != std::errc() || r.ptr != text.data() + text.size()) return std::nullopt;
+  if (r.ptr != text.data() + text.size()) return std::nullopt;
+  if (r.ec == std::errc::result_out_of_range) return out_of_range_value(text);
+  if (r.ec != std::errc()) return std::nullopt;
   return x;
 }
 

@@ -28,7 +28,9 @@ DoubleText double_text(double x);
 std::string log_number(double x);
 
 /// Parses the whole of `text` as a double ("1", "-2.5e3", "+1"); nullopt when it is not one.
-/// "nan" and "inf" parse (the caller decides whether non-finite values are allowed).
+/// "nan" and "inf" parse (the caller decides whether non-finite values are allowed). A number
+/// beyond the largest double reads as an infinity ("1e999"), one nearer to 0 than the smallest
+/// subnormal as a zero ("1e-400"), with their signs, as strtod reads them.
 std::optional<double> parse_double(std::string_view text);
 
 /// Parses the whole of `text` as a (possibly signed) integer; nullopt otherwise or on overflow.

@@ -91,6 +91,11 @@ std::string quoted(std::string_view t) {
   return "'" + s + "'";
 }
 
+// True for the text of a number too large for a double ("1e999"), not an "inf" or "nan".
+bool overflows(std::string_view t) {
+  return std::any_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 }  // namespace
 
 ObjMesh parse_obj(const std::string& path, std::string bytes) {
@@ -141,7 +146,9 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
         const auto x = parse_double(t.text);
         if (!x) fail("vertex coordinate " + quoted(t.text) + " is not a number");
         if (!std::isfinite(*x))
-          throw_input(path, line, "vertex coordinate " + quoted(t.text) + " is not finite");
+          throw_input(path, line,
+                      "vertex coordinate " + quoted(t.text) + " is not finite" +
+                          (overflows(t.text) ? " (beyond the largest double, 1.8e308)" : ""));
         p[k] = *x;
       }
       obj.mesh.positions.push_back(p);

@@ -34,9 +34,10 @@ struct ObjMesh {
 /// `f` (first field of each `v/vt/vn` entry; 1-based, negative = relative to the vertices so far;
 /// forward references allowed) matter; other statements are kept as text. `#` starts a comment.
 /// \param path used in messages only.
-/// \throw Error(Input) "path:line: what" for: non-numeric, missing or non-finite coordinates,
-///        face index 0 or out of range, faces with fewer than 3 or repeated vertices, binary data,
-///        line continuations, a file with no vertices.
+/// \throw Error(Input) "path:line: what" for: non-numeric, missing or non-finite coordinates
+///        (a number nearer 0 than the smallest subnormal reads as 0), face index 0 or out of
+///        range, faces with fewer than 3 or repeated vertices, binary data, line continuations,
+///        a file with no vertices.
 ObjMesh parse_obj(const std::string& path, std::string bytes);
 
 /// Reads and parses an OBJ file (see parse_obj).

@@ -108,7 +108,13 @@ expect obj_nan 3 "nan.0001.obj:7: vertex coordinate 'nan' is not finite" --patch
 variant inf.0001.obj '7s/.*/v 1 -inf 0/' $F
 expect obj_inf 3 "inf.0001.obj:7: vertex coordinate '-inf' is not finite" --patch $P $B "$tmp/inf.0001.obj"
 variant huge.0001.obj '7s/.*/v 1e999 1 0/' $F
-expect obj_overflowing_number 3 "huge.0001.obj:7: vertex coordinate '1e999' is not a number" --patch $P $B "$tmp/huge.0001.obj"
+expect obj_overflowing_number 3 "huge.0001.obj:7: vertex coordinate '1e999' is not finite (beyond the largest double, 1.8e308)" --patch $P $B "$tmp/huge.0001.obj"
+# A number nearer 0 than the smallest double (1e-400) is one: read as 0, as strtod reads it.
+variant tiny.obj '7s/.*/v 1 1 1e-400/'
+expect obj_underflowing_number_valid 0 "1 frames slid" --patch $P "$tmp/tiny.obj" $F
+"$bin" -q -o "$tmp/out/untiny" --patch $P $B $F
+cmp -s "$tmp/out/obj_underflowing_number_valid/$F" "$tmp/out/untiny/$F" ||
+  fail "obj_underflowing_number_valid: not the slide of the bind with a 0 there"
 
 # A statement meant as a vertex but misspelt would be skipped and shift every later index.
 variant upper.obj '7s/^v /V /'

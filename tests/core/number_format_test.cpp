@@ -31,6 +31,16 @@ TEST(NumberFormat, ParsingTakesWholeNumbersOnly) {
   EXPECT_FALSE(parse_double(""));
   EXPECT_FALSE(parse_double("+"));
   EXPECT_TRUE(std::isnan(*parse_double("nan")));
+  // Beyond a double's range: an infinity (overflow), or a zero (underflow) with its sign.
+  EXPECT_EQ(parse_double("1e999"), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(parse_double("-123.4e307"), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(parse_double("1e-400"), 0.0);
+  EXPECT_EQ(parse_double("0.000001e-320"), 0.0);
+  EXPECT_TRUE(std::signbit(*parse_double("-1e-400")));
+  EXPECT_EQ(parse_double("1e-310"), 1e-310);  // subnormal: read as is
+  EXPECT_EQ(parse_double("1e-99999999999999999999"), 0.0);
+  EXPECT_EQ(parse_double("1e+99999999999999999999"), std::numeric_limits<double>::infinity());
+  EXPECT_FALSE(parse_double("1e-400x"));
   EXPECT_EQ(parse_integer("+42"), 42);
   EXPECT_EQ(parse_integer("-7"), -7);
   EXPECT_FALSE(parse_integer("4.0"));
