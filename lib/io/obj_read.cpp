@@ -96,6 +96,28 @@ bool overflows(std::string_view t) {
   return std::any_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
+// A face corner is v, v/vt, v//vn or v/vt/vn: at most two slashes.
+constexpr std::ptrdiff_t kMaxCornerSlashes = 2;
+
+// Numbers a `v` line may hold after x y z: w (OBJ's optional weight), or a colour r g b or
+// r g b a as exporters write them (kept in the text, unread).
+constexpr size_t kMaxVertexExtras = 4;
+
+// The tokens after a vertex's x y z: a few finite numbers, or the line is not a vertex skinslide
+// understands (a word there may be a mistyped statement joined to the line).
+template <typename Fail>
+void check_vertex_tail(const std::vector<Token>& tok, Fail&& fail) {
+  for (size_t k = 4; k < tok.size(); ++k) {
+    const auto x = parse_double(tok[k].text);
+    if (!x || !std::isfinite(*x))
+      fail("vertex entry " + quoted(tok[k].text) + " after x y z is not " +
+           (x ? "finite" : "a number") + " (a vertex is x y z, then w or a colour r g b [a])");
+  }
+  if (tok.size() - 4 > kMaxVertexExtras)
+    fail("vertex has " + std::to_string(tok.size() - 1) + " numbers; at most " +
+         std::to_string(3 + kMaxVertexExtras) + " (x y z, then w or a colour r g b [a])");
+}
+
 }  // namespace
 
 ObjMesh parse_obj(const std::string& path, std::string bytes) {
@@ -151,6 +173,7 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
                           (overflows(t.text) ? " (beyond the largest double, 1.8e308)" : ""));
         p[k] = *x;
       }
+      check_vertex_tail(tok, fail);
       obj.mesh.positions.push_back(p);
       obj.text.coordinate_spans.push_back({tok[1].begin, tok[3].begin + tok[3].text.size()});
     } else if (key == "f") {
@@ -160,6 +183,9 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
       const long long nv = static_cast<long long>(obj.mesh.positions.size());
       for (size_t k = 1; k < tok.size(); ++k) {
         const std::string_view entry = tok[k].text;
+        if (std::count(entry.begin(), entry.end(), '/') > kMaxCornerSlashes)
+          fail("face corner " + quoted(entry) +
+               " has more than 3 parts; a corner is v, v/vt, v//vn or v/vt/vn");
         const std::string_view first = entry.substr(0, entry.find('/'));
         const auto idx = parse_integer(first);
         if (!idx) fail("face entry " + quoted(entry) + " is not a vertex index");

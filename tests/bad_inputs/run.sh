@@ -115,6 +115,16 @@ expect obj_underflowing_number_valid 0 "1 frames slid" --patch $P "$tmp/tiny.obj
 "$bin" -q -o "$tmp/out/untiny" --patch $P $B $F
 cmp -s "$tmp/out/obj_underflowing_number_valid/$F" "$tmp/out/untiny/$F" ||
   fail "obj_underflowing_number_valid: not the slide of the bind with a 0 there"
+# After x y z: a w or a colour r g b [a] (numbers, at most 4), kept byte for byte in the frame
+# written; a word there is refused.
+variant word_tail.obj '7s/.*/v 1 1 0 abc/'
+expect obj_vertex_word_after_coordinates 3 "word_tail.obj:7: vertex entry 'abc' after x y z is not a number" --patch $P "$tmp/word_tail.obj" $F
+variant five.obj '7s/.*/v 1 1 0 1 1 1 1 1/'
+expect obj_vertex_too_many_numbers 3 "five.obj:7: vertex has 8 numbers; at most 7" --patch $P "$tmp/five.obj" $F
+variant colour.0001.obj '7s/$/ 0.5 0.25 0.125 1/' $F
+expect obj_vertex_colour_valid 0 "1 frames slid" --patch $P $B "$tmp/colour.0001.obj"
+sed -n 7p "$tmp/out/obj_vertex_colour_valid/colour.0001.obj" | grep -q ' 0.5 0.25 0.125 1$' ||
+  fail "obj_vertex_colour_valid: the slid vertex lost its colour"
 
 # A statement meant as a vertex but misspelt would be skipped and shift every later index.
 variant upper.obj '7s/^v /V /'
@@ -148,6 +158,8 @@ variant repeat.obj '20s/.*/f 3 4 8 4/'
 expect obj_face_repeats_vertex 3 "repeat.obj:20: face uses vertex 4 twice (degenerate face)" --patch $P "$tmp/repeat.obj" $F
 variant word.obj '20s/.*/f 3 4 eight 7/'
 expect obj_face_entry_not_index 3 "word.obj:20: face entry 'eight' is not a vertex index" --patch $P "$tmp/word.obj" $F
+variant corner.obj '20s|.*|f 3 4/1/1/1 8 7|'
+expect obj_face_corner_four_parts 3 "corner.obj:20: face corner '4/1/1/1' has more than 3 parts" --patch $P "$tmp/corner.obj" $F
 variant cont.obj '20s/.*/f 3 4 \\/'
 expect obj_line_continuation 3 "cont.obj:20: line continuation" --patch $P "$tmp/cont.obj" $F
 # Valid: relative indices, v lines after the faces, slashes and extra statements.

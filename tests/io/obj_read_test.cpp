@@ -84,6 +84,28 @@ TEST(ObjRead, RejectsBadInputWithFileAndLine) {
   EXPECT_EQ(error_of("v 0 0 0\nf 1 a 3\n"), "t.obj:2: face entry 'a' is not a vertex index");
 }
 
+// After x y z a vertex line may hold a w or a colour r g b [a]: numbers, at most 4 of them.
+TEST(ObjRead, AVertexTakesUpToFourNumbersAfterItsCoordinates) {
+  const ObjMesh obj = parse_obj("t.obj", "v 0 0 0 1\nv 1 0 0 0.5 0.2 0.1\nv 0 1 0 1 0 0 1\n");
+  EXPECT_EQ(obj.mesh.positions[1], Vec3(1, 0, 0));
+  EXPECT_EQ(error_of("v 0 0 0 abc\n"),
+            "t.obj:1: vertex entry 'abc' after x y z is not a number (a vertex is x y z, then w "
+            "or a colour r g b [a])");
+  EXPECT_EQ(error_of("v 0 0 0\nv 0 0 0 1 1 nan\n"),
+            "t.obj:2: vertex entry 'nan' after x y z is not finite (a vertex is x y z, then w or "
+            "a colour r g b [a])");
+  EXPECT_EQ(error_of("v 0 0 0 1 1 1 1 1\n"),
+            "t.obj:1: vertex has 8 numbers; at most 7 (x y z, then w or a colour r g b [a])");
+}
+
+TEST(ObjRead, AFaceCornerHasAtMostThreeParts) {
+  const ObjMesh obj = parse_obj("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2//1 3/1/1\n");
+  EXPECT_EQ(obj.mesh.face_count(), 1);
+  EXPECT_EQ(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/1/1/1\n"),
+            "t.obj:4: face corner '3/1/1/1' has more than 3 parts; a corner is v, v/vt, v//vn or "
+            "v/vt/vn");
+}
+
 // The first bad line decides the message, whatever comes after it.
 TEST(ObjRead, TheFirstBadLineIsTheOneReported) {
   EXPECT_EQ(error_of(std::string("v 0 0 0\nv 0 x 0\nv \x00\n", 20)),
