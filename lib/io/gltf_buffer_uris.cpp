@@ -250,7 +250,157 @@ std::optional<std::string_view> glb_json_chunk(std::string_view bytes) {
   return bytes.substr(kJsonStart, length);
 }
 
+// The properties glTF 2.0 defines as integers >= 0 (indices, offsets, counts, enums) in the
+// objects skinslide reads or writes back. tinygltf reads a value that is not a JSON unsigned
+// integer (-12, 1.5, "8") as absent: a byteOffset as 0, a bufferView as none. `[]` is any element
+// of an array, `*` any key of an object.
+constexpr std::string_view kIntegerProperties[] = {
+    "scene",
+    "scenes[].nodes[]",
+    "nodes[].camera",
+    "nodes[].children[]",
+    "nodes[].skin",
+    "nodes[].mesh",
+    "meshes[].primitives[].attributes.*",
+    "meshes[].primitives[].indices",
+    "meshes[].primitives[].material",
+    "meshes[].primitives[].mode",
+    "meshes[].primitives[].targets[].*",
+    "skins[].inverseBindMatrices",
+    "skins[].skeleton",
+    "skins[].joints[]",
+    "animations[].channels[].sampler",
+    "animations[].channels[].target.node",
+    "animations[].samplers[].input",
+    "animations[].samplers[].output",
+    "accessors[].bufferView",
+    "accessors[].byteOffset",
+    "accessors[].componentType",
+    "accessors[].count",
+    "accessors[].sparse.count",
+    "accessors[].sparse.indices.bufferView",
+    "accessors[].sparse.indices.byteOffset",
+    "accessors[].sparse.indices.componentType",
+    "accessors[].sparse.values.bufferView",
+    "accessors[].sparse.values.byteOffset",
+    "bufferViews[].buffer",
+    "bufferViews[].byteOffset",
+    "bufferViews[].byteLength",
+    "bufferViews[].byteStride",
+    "bufferViews[].target",
+    "buffers[].byteLength",
+    "images[].bufferView",
+    "textures[].sampler",
+    "textures[].source",
+};
+
+// Whether the generic path of a value ("accessors[].byteOffset") is one of kIntegerProperties.
+bool is_integer_property(std::string_view path) {
+  for (std::string_view pattern : kIntegerProperties) {
+    std::size_t i = 0, k = 0;
+    while (i < pattern.size() && k <= path.size()) {
+      if (pattern[i] == '*') {  // one key: up to the next '.' or '['
+        while (k < path.size() && path[k] != '.' && path[k] != '[') ++k;
+        ++i;
+      } else if (k < path.size() && pattern[i] == path[k]) {
+        ++i;
+        ++k;
+      } else {
+        break;
+      }
+    }
+    if (i == pattern.size() && k == path.size()) return true;
+  }
+  return false;
+}
+
+// Largest values tinygltf keeps: an index is read as an int, a size as a size_t.
+constexpr unsigned long long kLargestIndex = 2147483647;
+constexpr unsigned long long kLargestSize = 9223372036854775807;
+
+bool is_size(std::string_view path) {
+  for (std::string_view name : {"byteOffset", "byteLength", "count", "byteStride"})
+    if (path.size() > name.size() && path.substr(path.size() - name.size()) == name &&
+        path[path.size() - name.size() - 1] == '.')
+      return true;
+  return false;
+}
+
+// Walks the value at the cursor (inside a container of depth `depth`): `path` is its generic
+// path, `where` its element name ("accessors[3].byteOffset"). The first integer property that is
+// not a whole number in range goes to `fault`.
+bool walk(Scan& c, int depth, std::string& path, std::string& where,
+          std::optional<JsonFault>& fault) {
+  const std::size_t start = c.i;
+  const char first = next(c);
+  const std::size_t path_size = path.size(), where_size = where.size();
+  const auto restore = [&] {
+    path.resize(path_size);
+    where.resize(where_size);
+  };
+  bool ok = true;
+  if (first == '{') {
+    ok = read_object(c, depth + 1, [&](const std::string& key) {
+      restore();
+      path += (path.empty() ? "" : ".") + key;
+      where += (where.empty() ? "" : ".") + key;
+      return walk(c, depth + 1, path, where, fault);
+    });
+  } else if (first == '[') {
+    std::size_t k = 0;
+    ok = read_array(c, depth + 1, [&] {
+      restore();
+      path += "[]";
+      where += "[" + std::to_string(k++) + "]";
+      return walk(c, depth + 1, path, where, fault);
+    });
+  } else {
+    ok = skip_value(c, depth);
+  }
+  restore();
+  if (!ok || fault || first == '{' || first == '[' || !is_integer_property(path)) return ok;
+  const std::string_view text = c.s.substr(start, c.i - start);
+  std::string_view value = text;
+  while (!value.empty() && (value.front() == ' ' || value.front() == '\t' ||
+                            value.front() == '\n' || value.front() == '\r'))
+    value.remove_prefix(1);
+  const bool whole = !value.empty() && value.find_first_not_of("0123456789") == std::string::npos;
+  constexpr std::size_t kShown = 40;
+  const std::string shown(value.substr(0, kShown));
+  if (!whole) {
+    fault = JsonFault{where, shown + " is not a whole number >= 0"};
+  } else {
+    const unsigned long long limit = is_size(path) ? kLargestSize : kLargestIndex;
+    unsigned long long x = 0;
+    bool over = value.size() > 19;
+    for (std::size_t k = 0; k < value.size() && !over; ++k) {
+      over = x > (limit - static_cast<unsigned long long>(value[k] - '0')) / 10;
+      x = x * 10 + static_cast<unsigned long long>(value[k] - '0');
+    }
+    if (over)
+      fault =
+          JsonFault{where, shown + " is past the largest " + (is_size(path) ? "size" : "index") +
+                               " read (" + std::to_string(limit) + ")"};
+  }
+  return ok;
+}
+
 }  // namespace
+
+std::optional<JsonFault> gltf_integer_fault(std::string_view bytes) {
+  std::string_view json = bytes;
+  if (bytes.substr(0, 4) == "glTF") {
+    const std::optional<std::string_view> chunk = glb_json_chunk(bytes);
+    if (!chunk) return std::nullopt;
+    json = *chunk;
+  }
+  Scan c{json};
+  if (json.substr(0, 3) == "\xEF\xBB\xBF") c.i = 3;
+  std::string path, where;
+  std::optional<JsonFault> fault;
+  if (next(c) != '{' || !walk(c, 0, path, where, fault)) return std::nullopt;
+  return fault;
+}
 
 std::optional<std::vector<std::string>> gltf_buffer_uris(std::string_view bytes) {
   if (bytes.substr(0, 4) != "glTF") return json_buffer_uris(bytes);

@@ -1,5 +1,6 @@
-// The buffers' URIs of a glTF, read from its JSON before tinygltf loads anything, so that each is
-// checked (io/gltf_uri.h) before a byte of it is read. Internal to io/.
+// What is read of a glTF's JSON before tinygltf loads anything: the buffers' URIs, so that each
+// is checked (io/gltf_uri.h) before a byte of it is read, and the integer properties tinygltf
+// would read as absent when they are not whole numbers. Internal to io/.
 #pragma once
 
 #include <optional>
@@ -17,6 +18,21 @@ namespace skinslide {
 ///         `buffers` or a buffer's `uri` twice, or the GLB header is cut: then no buffer is
 ///         approved, and tinygltf, which parses the same bytes, reports what is wrong.
 std::optional<std::vector<std::string>> gltf_buffer_uris(std::string_view bytes);
+
+/// A value of a glTF's JSON that skinslide refuses, and where it is.
+struct JsonFault {
+  std::string element;  ///< e.g. "accessors[3].byteOffset"
+  std::string what;     ///< e.g. "-12 is not a whole number >= 0"
+};
+
+/// The first property glTF 2.0 defines as an integer >= 0 (an index, offset, count, stride or
+/// enum of the scene, nodes, meshes, skins, animations, accessors, buffer views, buffers, images
+/// and textures) whose value is not a JSON whole number, or is past what tinygltf keeps (an index
+/// 2^31 - 1, a size 2^63 - 1). tinygltf reads such a value as absent (a byteOffset of -12 or 1.5
+/// as 0), which would change what the file means. `bytes` as for gltf_buffer_uris.
+/// \return nullopt when every such value is whole and in range, or the JSON is malformed
+///         (tinygltf then reports what is wrong).
+std::optional<JsonFault> gltf_integer_fault(std::string_view bytes);
 
 /// Bytes of a data: URI kept by gltf_buffer_uris: more than the longest media type prefix
 /// tinygltf decodes ("data:application/octet-stream;base64,", 37 bytes).

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "io/atomic_write.h"
 #include "io/gltf_accessor.h"
+#include "io/gltf_buffer_uris.h"
 #include "io/gltf_document.h"
 #include "io/gltf_uri.h"
 
@@ -158,6 +159,8 @@ void check_attribute(const tinygltf::Model& model, int accessor, int type, Index
 std::shared_ptr<GltfDocument> load_document(const std::string& path,
                                             const MeshReadOptions& options) {
   const std::string bytes = read_file(path);
+  if (const std::optional<JsonFault> fault = gltf_integer_fault(bytes))
+    fail(path, fault->element + ": " + fault->what);
   auto doc = std::make_shared<GltfDocument>();
   ApprovedFiles files = approved_buffer_files(path, bytes, options.allow_uri_outside);
   tinygltf::TinyGLTF loader;

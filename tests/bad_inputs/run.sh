@@ -265,6 +265,14 @@ gltf_variant floatidx.gltf 's|"componentType":5123,"count":6|"componentType":512
 expect gltf_float_indices 3 "floatidx.gltf: mesh 0 primitive 0: indices accessor 1: must be SCALAR unsigned byte/short/int" --patch $P --animation 0 "$tmp/floatidx.gltf"
 gltf_variant count.gltf 's|"count":4,"type":"VEC3"|"count":4294967295,"type":"VEC3"|'
 expect gltf_accessor_count_huge 3 "count.gltf: mesh 0 primitive 0: POSITION accessor 0: 4294967295 elements from byte 0 run past the end of buffer view 0 (48 bytes)" --patch $P --animation 0 "$tmp/count.gltf"
+# Integer properties (offsets, counts, indices) that are not whole numbers: tinygltf reads them as
+# absent (a byteOffset as 0); refused, naming the element.
+gltf_variant negoffset.gltf 's|"buffer":0,"byteOffset":48|"buffer":0,"byteOffset":-12|'
+expect gltf_negative_byte_offset 3 "negoffset.gltf: bufferViews[1].byteOffset: -12 is not a whole number >= 0" --patch $P --animation 0 "$tmp/negoffset.gltf"
+gltf_variant halfoffset.gltf 's|"bufferView":0,"componentType":5126|"bufferView":0,"byteOffset":1.5,"componentType":5126|'
+expect gltf_fractional_byte_offset 3 "halfoffset.gltf: accessors[0].byteOffset: 1.5 is not a whole number >= 0" --patch $P --animation 0 "$tmp/halfoffset.gltf"
+gltf_variant bigindex.gltf 's|"POSITION":0|"POSITION":4294967296|'
+expect gltf_index_past_int 3 "bigindex.gltf: meshes[0].primitives[0].attributes.POSITION: 4294967296 is past the largest index read (2147483647)" --patch $P --animation 0 "$tmp/bigindex.gltf"
 head -c 300 $G >"$tmp/cut.gltf"
 expect gltf_truncated_json 3 "cut.gltf: not a readable glTF 2.0 file: [json.exception.parse_error.101] parse error at line 1, column 301" --patch $P --animation 0 "$tmp/cut.gltf"
 printf 'glTF\x02\x00\x00\x00\xff\xff\x00\x00JSON' >"$tmp/cut.glb"

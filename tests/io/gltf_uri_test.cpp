@@ -393,5 +393,35 @@ TEST(GltfUri, CallbacksOpenOnlyApprovedRegularFiles) {
   EXPECT_FALSE(fs::exists(t.asset / "w.bin"));
 }
 
+// tinygltf reads an integer property that is not a JSON whole number as absent: refused first.
+TEST(GltfJson, IntegerPropertiesMustBeWholeNumbersInRange) {
+  const auto fault = [](const std::string& json) {
+    const std::optional<JsonFault> f = gltf_integer_fault(json);
+    return f ? f->element + ": " + f->what : std::string();
+  };
+  EXPECT_EQ(fault(R"({"accessors":[{"byteOffset":0,"count":4},{"bufferView":1,"count":3}]})"), "");
+  EXPECT_EQ(fault(R"({"accessors":[{"count":4},{"byteOffset":-12}]})"),
+            "accessors[1].byteOffset: -12 is not a whole number >= 0");
+  EXPECT_EQ(fault(R"({"bufferViews":[{"byteStride":1.5}]})"),
+            "bufferViews[0].byteStride: 1.5 is not a whole number >= 0");
+  EXPECT_EQ(fault(R"({"accessors":[{"count": "4"}]})"),
+            "accessors[0].count: \"4\" is not a whole number >= 0");
+  EXPECT_EQ(fault(R"({"accessors":[{"count":4e0}]})"),
+            "accessors[0].count: 4e0 is not a whole number >= 0");
+  EXPECT_EQ(fault(R"({"nodes":[{"children":[1, -1]}]})"),
+            "nodes[0].children[1]: -1 is not a whole number >= 0");
+  EXPECT_EQ(fault(R"({"meshes":[{"primitives":[{"targets":[{"NORMAL":null}]}]}]})"),
+            "meshes[0].primitives[0].targets[0].NORMAL: null is not a whole number >= 0");
+  EXPECT_EQ(fault(R"({"skins":[{"joints":[2147483648]}]})"),
+            "skins[0].joints[0]: 2147483648 is past the largest index read (2147483647)");
+  EXPECT_EQ(fault(R"({"buffers":[{"byteLength":4294967296}]})"), "");  // a size may pass 2^31
+  // Pretty-printed: the spaces around a value are not part of it.
+  EXPECT_EQ(fault("{\n  \"scenes\": [ { \"nodes\": [\n 0 ,\n 1\n ] } ],\n \"scene\" : 0\n}\n"), "");
+  EXPECT_EQ(fault("{\n  \"scene\" :\n  -1\n}\n"), "scene: -1 is not a whole number >= 0");
+  // Properties of the same name elsewhere (extras, extensions) are not glTF's to check.
+  EXPECT_EQ(fault(R"({"extras":{"count":-1},"accessors":[{"extras":{"byteOffset":1.5}}]})"), "");
+  EXPECT_EQ(fault(R"({"accessors":[{"byteOffset":-1)"), "");  // malformed: tinygltf reports it
+}
+
 }  // namespace
 }  // namespace skinslide
