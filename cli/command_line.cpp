@@ -286,10 +286,16 @@ void parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // A misspelt key leaves its option unset: a required option then seems missing.
     if (e.get_exit_code() != 0) check_config_keys(app);
+    name_config_value(app, e);
     throw;
   }
   check_config_keys(app);
-  check_options(app, o);
+  try {
+    check_options(app, o);
+  } catch (const CLI::ParseError& e) {
+    name_config_value(app, e);
+    throw;
+  }
 }
 
 void check_options(const CLI::App& app, CliOptions& o) {

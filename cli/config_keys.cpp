@@ -48,13 +48,27 @@ std::string nearest(const std::string& key, const std::vector<std::string>& name
   return best;
 }
 
-// As CLI11 applies a config item (App::_parse_single_config): the app has no subcommands, so a
-// key under a section or a dotted prefix names nothing.
+// The option a config key sets, as CLI11 applies a config item (App::_parse_single_config): the
+// app has no subcommands, so a key under a section or a dotted prefix names nothing.
+const CLI::Option* option_of(const CLI::App& app, const std::vector<std::string>& parents,
+                             const std::string& name) {
+  if (!parents.empty()) return nullptr;
+  if (const CLI::Option* o = app.get_option_no_throw("--" + name)) return o;
+  if (name.size() == 1)
+    if (const CLI::Option* o = app.get_option_no_throw("-" + name)) return o;
+  return app.get_option_no_throw(name);
+}
+
 bool names_an_option(const CLI::App& app, const ConfigKey& key) {
-  if (!key.parents.empty()) return false;
-  return app.get_option_no_throw("--" + key.name) != nullptr ||
-         (key.name.size() == 1 && app.get_option_no_throw("-" + key.name) != nullptr) ||
-         app.get_option_no_throw(key.name) != nullptr;
+  return option_of(app, key.parents, key.name) != nullptr;
+}
+
+// Whether CLI11's message is about `option`: "--name: what" (a check), or "Could not convert:
+// --name = value" (a flag's value).
+bool is_about(const std::string& message, const CLI::Option& option) {
+  const std::string name = option.get_name();
+  return message.rfind(name + ":", 0) == 0 ||
+         message.rfind("Could not convert: " + name + " ", 0) == 0;
 }
 
 std::string full_name(const ConfigKey& key) {
@@ -121,6 +135,34 @@ void check_config_keys(const CLI::App& app) {
       throw CLI::ConfigError(path + ":" + std::to_string(key.line) + ": unknown key '" +
                              full_name(key) + "'; the nearest option is '" +
                              nearest(key.name, option_names(app)) + "'");
+}
+
+void name_config_value(const CLI::App& app, const CLI::ParseError& error) {
+  const CLI::Option* config = app.get_config_ptr();
+  if (config == nullptr || config->count() == 0 || error.get_exit_code() == 0) return;
+  const std::string path = config->results().front();
+  std::ifstream in(path);
+  if (!in) return;
+  const std::vector<ConfigKey> keys = config_keys(in);
+  std::vector<CLI::ConfigItem> items;
+  try {
+    items = app.get_config_formatter()->from_file(path);
+  } catch (const CLI::Error&) {
+    return;
+  }
+  const std::string message = error.what();
+  for (const CLI::ConfigItem& item : items) {
+    const CLI::Option* option = option_of(app, item.parents, item.name);
+    if (option == nullptr || !is_about(message, *option)) continue;
+    // A value on the command line wins over the file's (which is then not read): the file is
+    // named only when the option holds the file's value, or none (refused as it was read).
+    if (!option->results().empty() && option->results() != item.inputs) return;
+    long line = 0;
+    for (const ConfigKey& key : keys)
+      if (key.name == item.name && key.parents.empty()) line = key.line;
+    throw CLI::ConfigError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) +
+                           ": key '" + item.name + "': " + message);
+  }
 }
 
 }  // namespace skinslide::cli

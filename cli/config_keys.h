@@ -30,4 +30,10 @@ std::vector<ConfigKey> config_keys(std::istream& in);
 ///        (nearest by edit distance among the options a config file may set).
 void check_config_keys(const CLI::App& app);
 
+/// After a parse or a check of the options failed with `error`: when the value refused is a
+/// --config file's (the option holds that file's value, or was refused as the file was read),
+/// throws the same message naming the file, the key's line and the key.
+/// \throw CLI::ConfigError "<file>:<line>: key '<key>': <error's message>"; returns otherwise.
+void name_config_value(const CLI::App& app, const CLI::ParseError& error);
+
 }  // namespace skinslide::cli

@@ -567,7 +567,12 @@ expect config_key_in_a_section 2 "section.toml:3: unknown key 'run.threads'; the
 printf 'patch = ["all.txt",\n         "all.txt"]\nq_floor = 0.01\n' >"$tmp/array.toml"
 expect config_key_after_an_array 2 "array.toml:3: unknown key 'q_floor'; the nearest option is 'q-floor'" --config "$tmp/array.toml" $B $F
 printf 'patch = ["all.txt"]\ntolerance = 5\n' >"$tmp/range.toml"
-expect config_value_out_of_range 2 "--tolerance: Value 5 not in range 0.000000 to 1.000000" --config "$tmp/range.toml" $B $F
+expect config_value_out_of_range 2 "range.toml:2: key 'tolerance': --tolerance: Value 5 not in range 0.000000 to 1.000000" --config "$tmp/range.toml" $B $F
+# A value of the wrong type names the file, line and key (CLI11's message names the option only).
+printf 'patch = ["all.txt"]\n# farm\nthreads = "two"\n' >"$tmp/type.toml"
+expect config_value_wrong_type 2 "type.toml:3: key 'threads': --threads: Value two not in range 0 to 1024" --config "$tmp/type.toml" $B $F
+printf 'patch = ["all.txt"]\nkeep-going = "maybe"\n' >"$tmp/flag.toml"
+expect config_flag_not_a_boolean 2 "flag.toml:2: key 'keep-going': Could not convert: --keep-going = maybe" --config "$tmp/flag.toml" $B $F
 # CLI11's ranges let NaN through; bands narrower than round-off read as converged: refused.
 expect option_nan 2 "--convergence: Value nan is not a number" --convergence nan --patch $P $B $F
 expect option_nan_blend 2 "--blend: Value NaN is not a number" --blend NaN --patch $P $B $F
@@ -575,7 +580,7 @@ expect blend_below_round_off 2 "--blend 1e-100: bands this narrow are below roun
 printf 'patch = ["all.txt"]\nmethod = "paper"\ndensity = "papr"\n' >"$tmp/word.toml"
 expect config_value_not_a_word 2 "--density: papr not in {paper,inverse,length,uniform}" --config "$tmp/word.toml" $B $F
 printf 'patch = ["all.txt"]\nmethod = "paper"\ntolerance = 0.1\n' >"$tmp/other.toml"
-expect config_other_methods_option 2 "--tolerance: applies to --method elastic only, not to --method paper" --config "$tmp/other.toml" $B $F
+expect config_other_methods_option 2 "other.toml:3: key 'tolerance': --tolerance: applies to --method elastic only, not to --method paper" --config "$tmp/other.toml" $B $F
 printf '# every key an option\npatch = ["all.txt"]\nkeep-going\n[default]\nstrength = 0.5\n' >"$tmp/good.toml"
 expect config_keys_all_options 0 "1 frames slid" --config "$tmp/good.toml" $B $F
 printf '\xEF\xBB\xBF' | cat - "$tmp/good.toml" >"$tmp/bom.toml"
