@@ -261,7 +261,11 @@ Selected split_selection(const PolyMesh& mesh, const std::vector<Index>& faces, 
 
 std::vector<PatchComponent> patch_components(const PolyMesh& mesh,
                                              const std::vector<std::vector<Index>>& selections,
-                                             const FaceNamer& name_face) {
+                                             const FaceNamer& name_face,
+                                             const SelectionNamer& name_selection) {
+  const auto selection = [&](Index s) {
+    return name_selection ? name_selection(s) : "patch " + std::to_string(s);
+  };
   std::vector<PatchComponent> all;
   std::vector<std::tuple<Index, Index, bool>> roles;  // vertex, global component, boundary
   std::vector<std::pair<Index, Index>> owner;         // face, selection
@@ -275,9 +279,8 @@ std::vector<PatchComponent> patch_components(const PolyMesh& mesh,
   std::sort(owner.begin(), owner.end());
   for (size_t k = 1; k < owner.size(); ++k)
     if (owner[k].first == owner[k - 1].first)
-      throw_patch(name_face(owner[k].first) + " is selected by patch " +
-                  std::to_string(owner[k - 1].second) + " and by patch " +
-                  std::to_string(owner[k].second) + "; a face belongs to one patch");
+      throw_patch(name_face(owner[k].first) + " is selected by " + selection(owner[k - 1].second) +
+                  " and by " + selection(owner[k].second) + "; a face belongs to one patch");
   std::sort(roles.begin(), roles.end());
   for (size_t s = 0; s < roles.size();) {
     size_t e = s;

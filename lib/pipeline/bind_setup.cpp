@@ -234,7 +234,8 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
 
 BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
                      const SlideOptions& options, const SlideControls& controls,
-                     const FaceNamer& name_face, unsigned threads) {
+                     const FaceNamer& name_face, unsigned threads,
+                     const SelectionNamer& name_selection) {
   const FaceNamer namer =
       name_face ? name_face : [](Index f) { return "face " + std::to_string(f); };
   BindSetup setup;
@@ -268,7 +269,8 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
     }
   }
 
-  const std::vector<PatchComponent> comps = patch_components(bind, selections, namer);
+  const std::vector<PatchComponent> comps =
+      patch_components(bind, selections, namer, name_selection);
   const std::vector<PatchChoice> choices = patch_choices(comps, controls, nv);
   // Patches are independent: each is set up into its own slot, by as many threads as asked, and
   // the first failing patch in order decides the error, as in a serial run.

@@ -36,11 +36,13 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
 /// The same with the animator's controls (weights, pins, corners, outer loops).
 /// \param threads patches set up at once (each patch by one thread); the result is the same
 ///        for any count. `name_face` must then be safe to call from several threads.
+/// \param name_selection names a selection in messages (its patch file); default "patch N".
 /// \throw Error(Usage) naming the option and the vertex id for: an id past the last vertex, a
 ///        weight outside [0, 1], a corner or outer-loop vertex on no patch's boundary loop,
 ///        corners not in the loop's walking order, two choices for one patch that disagree.
 BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>& selections,
                      const SlideOptions& options, const SlideControls& controls,
-                     const FaceNamer& name_face = {}, unsigned threads = 1);
+                     const FaceNamer& name_face = {}, unsigned threads = 1,
+                     const SelectionNamer& name_selection = {});
 
 }  // namespace skinslide

@@ -128,7 +128,7 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
                        [&](Index f) {
                          return "face " + std::to_string(f) + " (" + bind.where_face(f) + ")";
                        },
-                       threads);
+                       threads, [&](Index s) { return "--patch " + o.patches[s]; });
   report.bind_seconds = seconds_since(t_run);
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
   make_output_dir(plan.folder);

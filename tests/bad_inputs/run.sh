@@ -198,7 +198,7 @@ variant flipped.obj '22s/.*/f 10 11 7 6/'
 expect topo_flipped_face 3 "traverse edge" --patch $P "$tmp/flipped.obj" $F
 printf '0-4\n' >"$tmp/left.txt"
 printf '4-8\n' >"$tmp/right.txt"
-expect topo_face_in_two_patches 3 "face 4 (grid.obj:22) is selected by patch 0 and by patch 1" --patch "$tmp/left.txt" --patch "$tmp/right.txt" $B $F
+expect topo_face_in_two_patches 3 "face 4 (grid.obj:22) is selected by --patch $tmp/left.txt and by --patch $tmp/right.txt; a face belongs to one patch" --patch "$tmp/left.txt" --patch "$tmp/right.txt" $B $F
 
 # --- frames that are not the bind deformed ------------------------------------------------------
 variant more.0001.obj '17a v 9 9 9' $F

@@ -145,6 +145,15 @@ TEST(Patches, RejectsAFaceInTwoSelections) {
   const PolyMesh mesh = test::quad_grid(2, 2);
   const std::string msg = error_of(mesh, {{0, 1}, {1, 2}});
   EXPECT_NE(msg.find("face 1 is selected by patch 0 and by patch 1"), std::string::npos) << msg;
+  // Named by their files when the caller names them (the patch components are numbered otherwise).
+  const std::vector<std::string> files = {"left.txt", "right.txt"};
+  try {
+    patch_components(mesh, {{0, 1}, {1, 2}}, names(), [&](Index s) { return files[s]; });
+    ADD_FAILURE() << "a face in two selections was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "face 1 is selected by left.txt and by right.txt; a face belongs to one patch");
+  }
 }
 
 TEST(Patches, TubeBandHasTwoLoops) {
