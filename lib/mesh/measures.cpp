@@ -1,6 +1,11 @@
 #include "mesh/measures.h"
 
+#include <cmath>
+
 #include <Eigen/Geometry>
+
+#include "core/error.h"
+#include "core/number_format.h"
 
 namespace skinslide {
 
@@ -10,6 +15,27 @@ std::vector<double> bar_lengths(const Positions3& points,
   for (size_t i = 0; i < bars.size(); ++i)
     lengths[i] = (points[bars[i][0]] - points[bars[i][1]]).norm();
   return lengths;
+}
+
+void require_computable_span(const Positions3& points, const std::vector<Index>& ids) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  size_t largest = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    lo = lo.cwiseMin(points[i]);
+    hi = hi.cwiseMax(points[i]);
+    if (points[i].cwiseAbs().maxCoeff() > points[largest].cwiseAbs().maxCoeff()) largest = i;
+  }
+  if (points.empty()) return;
+  // Halved first: the diagonal of a box near the largest doubles would itself overflow.
+  const double span = 2 * (0.5 * hi - 0.5 * lo).stableNorm();
+  if (span <= kLargestPatchSpan) return;
+  const Vec3& p = points[largest];
+  throw Error(ErrorKind::Input,
+              "vertex " + std::to_string(ids[largest]) + " at (" + log_number(p[0]) + ", " +
+                  log_number(p[1]) + ", " + log_number(p[2]) +
+                  "): coordinates too large: the patch spans " + log_number(span) +
+                  ", and its lengths' squares and products overflow a double beyond a span of " +
+                  log_number(kLargestPatchSpan) + "; scale the mesh down");
 }
 
 Folds count_folds(const Positions2& net, const std::vector<Triangle>& triangles) {

@@ -14,6 +14,17 @@ namespace skinslide {
 std::vector<double> bar_lengths(const Positions3& points,
                                 const std::vector<std::array<Index, 2>>& bars);
 
+/// The largest span (bounding-box diagonal) a patch may have, in the mesh's units. Both methods
+/// square lengths and sum products of them (the elastic energy grows as a length to the 4th),
+/// which overflow a double from about 1e77; below this they stay finite with room to spare.
+inline constexpr double kLargestPatchSpan = 1e60;
+
+/// Checks that `points` (a patch's positions; `ids` their mesh vertex ids, for the message) span
+/// at most kLargestPatchSpan.
+/// \throw Error(Input) "vertex V at (x, y, z): coordinates too large: ..." naming the vertex of
+///        the largest coordinate.
+void require_computable_span(const Positions3& points, const std::vector<Index>& ids);
+
 /// How many triangles of a net do not keep the orientation of the majority.
 struct Folds {
   int flipped = 0;              ///< zero area or of the minority sign (what reports call flips)

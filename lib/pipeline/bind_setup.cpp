@@ -188,6 +188,7 @@ Patch patch_net(const PolyMesh& bind, const PatchComponent& comp, std::size_t in
   patch.bars.erase(std::unique(patch.bars.begin(), patch.bars.end()), patch.bars.end());
 
   const Positions3 points = gather(bind.positions, patch.vertices);
+  require_computable_span(points, patch.vertices);
   patch.bind_diagonal = diagonal(points);
   std::vector<double> lengths;
   std::vector<Index> starts;

@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "mesh/measures.h"
 
 namespace skinslide {
 namespace {
@@ -46,6 +47,7 @@ PatchFrameReport slide_and_gather(const BindSetup& setup, std::size_t p,
   const Patch& patch = setup.patches[p];
   Positions3 points(patch.vertices.size());
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
+  require_computable_span(points, patch.vertices);
   MethodSlide slide =
       slide_patch(setup.method, p, patch, points, setup.weight, extras.id_image_size);
   PatchFrameReport report;

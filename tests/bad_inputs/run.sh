@@ -237,6 +237,12 @@ expect degenerate_frame_all_collapsed_paper 3 "point.0001.obj: patch 0: every ba
 awk '/^v /{print "v", $2, 0, 0; next} {print}' $B >"$tmp/flat.obj"
 expect degenerate_bind_all_collapsed_to_a_line 0 "1 frames slid" --patch $P "$tmp/flat.obj" $F
 expect degenerate_bind_all_collapsed_to_a_line_paper 0 "1 frames slid" --method paper --patch $P "$tmp/flat.obj" $F
+# Coordinates near 1e300: lengths overflow a double (they read as "zero length" once); refused,
+# naming the vertex, in the bind and in a frame.
+awk '/^v /{print "v", $2 "e300", $3 "e300", $4 "e300"; next} {print}' $B >"$tmp/vast.obj"
+expect degenerate_bind_overflowing_coordinates 3 "patch 0 (face 0 ($tmp/vast.obj:18), 9 faces): vertex 3 at (3e+300, 0, 0): coordinates too large" --patch $P "$tmp/vast.obj" $F
+awk '/^v /{print "v", $2 "e300", $3 "e300", $4 "e300"; next} {print}' $F >"$tmp/vast.0001.obj"
+expect degenerate_frame_overflowing_coordinates_paper 3 "vast.0001.obj: patch 0: vertex 3 at (3e+300, 0, 9e+299): coordinates too large" --method paper --patch $P $B "$tmp/vast.0001.obj"
 expect degenerate_bind_zero_length_edge_paper 0 "sliding vertices" --method paper --patch $P "$tmp/zero_edge.obj" $F
 expect degenerate_bind_zero_area_paper 0 "sliding vertices" --method paper --patch $P "$tmp/sliver.obj" $F
 

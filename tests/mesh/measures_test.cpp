@@ -4,8 +4,27 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
+
 namespace skinslide {
 namespace {
+
+// Lengths' squares overflow near 1e154 and the elastic energy near 1e77: such a patch is refused
+// naming its vertex of the largest coordinate, not left to fail later as "zero length".
+TEST(Measures, APatchTooLargeForDoublesIsRefusedNamingAVertex) {
+  const std::vector<Index> ids = {7, 8, 9};
+  require_computable_span({Vec3(0, 0, 0), Vec3(1e59, 0, 0), Vec3(0, 1e59, 0)}, ids);
+  try {
+    require_computable_span({Vec3(0, 0, 0), Vec3(1e300, 0, 0), Vec3(0, -3e300, 0)}, ids);
+    ADD_FAILURE() << "a span of 3e300 was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_EQ(std::string(e.what()),
+              "vertex 9 at (0, -3e+300, 0): coordinates too large: the patch spans 3.162e+300, "
+              "and its lengths' squares and products overflow a double beyond a span of 1e+60; "
+              "scale the mesh down");
+  }
+}
 
 TEST(Measures, BarLengthsAreEuclidean) {
   const Positions3 p{{0, 0, 0}, {3, 4, 0}, {3, 4, 12}};
