@@ -153,12 +153,6 @@ constexpr int kCurvatureIterations = 8;
 // ... and they stop once an iteration adds less than this share of the estimate.
 constexpr double kCurvatureAccuracy = 1e-2;
 
-double dot(const Positions2& a, const Positions2& b) {
-  double total = 0;
-  for (size_t i = 0; i < a.size(); ++i) total += a[i].dot(b[i]);
-  return total;
-}
-
 // Per movable vertex an orthonormal basis Q of the frame's smooth tangent plane where it is (the
 // frame's area-weighted vertex normals interpolated over its triangle), turned as the chart's
 // axes are there (its triangle's Jacobian projected into the plane), so that neighbours' bases

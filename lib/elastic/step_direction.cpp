@@ -33,12 +33,6 @@ TangentFrame one_tangent_frame(const Mat32& T) {
   return out;
 }
 
-double dot(const Positions2& a, const Positions2& b) {
-  double total = 0;
-  for (size_t i = 0; i < a.size(); ++i) total += a[i].dot(b[i]);
-  return total;
-}
-
 // (Q^T (K x I3) Q + shift I) p over the vertices that do not stay (p is zero on the others,
 // and so is the product).
 void apply_system(const ElasticMetric& metric, const std::vector<TangentFrame>& frame,
@@ -59,6 +53,12 @@ void apply_system(const ElasticMetric& metric, const std::vector<TangentFrame>& 
 }
 
 }  // namespace
+
+double dot(const Positions2& a, const Positions2& b) {
+  double total = 0;
+  for (size_t i = 0; i < a.size(); ++i) total += a[i].dot(b[i]);
+  return total;
+}
 
 ElasticMetric elastic_metric(const ArapTriangles& mesh, const std::vector<Index>& movable_slot,
                              Index count) {

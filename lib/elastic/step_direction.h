@@ -56,6 +56,9 @@ struct TangentFrame {
   bool crushed = true;
 };
 
+/// The sum of a[i] . b[i]: the dot product of two per-vertex 2D fields.
+double dot(const Positions2& a, const Positions2& b);
+
 /// Per movable vertex its tangent frame for the Jacobians T (3x2: chart step -> 3D motion).
 std::vector<TangentFrame> tangent_frames(const std::vector<Mat32>& T);
 

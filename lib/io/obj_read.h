@@ -31,9 +31,9 @@ struct ObjMesh {
 };
 
 /// Parses OBJ text. Only `v` (first three numbers; up to 4 more, a w or a colour r g b [a], are
-/// kept in the text but ignored) and
-/// `f` (first field of each `v/vt/vn` entry; 1-based, negative = relative to the vertices so far;
-/// forward references allowed) matter; other statements are kept as text. `#` starts a comment.
+/// kept in the text but ignored) and `f` (first field of each `v/vt/vn` entry; 1-based,
+/// negative = relative to the vertices so far; forward references allowed) matter; other
+/// statements are kept as text. `#` starts a comment.
 /// \param path used in messages only.
 /// \throw Error(Input) "path:line: what" for: non-numeric, missing or non-finite coordinates
 ///        (a number nearer 0 than the smallest subnormal reads as 0), more than 4 numbers or

@@ -20,10 +20,14 @@ std::vector<double> bar_lengths(const Positions3& points,
 void require_computable_span(const Positions3& points, const std::vector<Index>& ids) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   size_t largest = 0;
+  double largest_coordinate = -1;
   for (size_t i = 0; i < points.size(); ++i) {
     lo = lo.cwiseMin(points[i]);
     hi = hi.cwiseMax(points[i]);
-    if (points[i].cwiseAbs().maxCoeff() > points[largest].cwiseAbs().maxCoeff()) largest = i;
+    if (const double c = points[i].cwiseAbs().maxCoeff(); c > largest_coordinate) {
+      largest_coordinate = c;
+      largest = i;
+    }
   }
   if (points.empty()) return;
   // Halved first: the diagonal of a box near the largest doubles would itself overflow.

@@ -27,12 +27,11 @@ using SelectionNamer = std::function<std::string(Index selection)>;
 
 /// Splits each selection (ascending face ids of `mesh`) into components, ordered by smallest
 /// vertex id (then smallest face id).
-/// \throw Error(Input) naming the culprit for: a face in two selections (both named), a face with a
-/// repeated
-///        vertex, an edge in more than two selected faces, two faces traversing an edge the same
-///        way (inconsistent orientation; non-orientable patch), a vertex whose faces form several
-///        fans (bow-tie), a vertex interior to one component and touched by another, and a
-///        component with no boundary (closed surface).
+/// \throw Error(Input) naming the culprit for: a face in two selections (both named), a face
+///        with a repeated vertex, an edge in more than two selected faces, two faces traversing
+///        an edge the same way (inconsistent orientation; non-orientable patch), a vertex whose
+///        faces form several fans (bow-tie), a vertex interior to one component and touched by
+///        another, and a component with no boundary (closed surface).
 std::vector<PatchComponent> patch_components(const PolyMesh& mesh,
                                              const std::vector<std::vector<Index>>& selections,
                                              const FaceNamer& name_face,
