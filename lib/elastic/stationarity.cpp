@@ -181,27 +181,49 @@ std::vector<TangentFrame> smooth_tangent_frames(const FrameSurface& surface,
   return tangent_frames(axes);
 }
 
-// (Q^T H Q + shift I) a over the movable vertices; zero on those that stay.
-void apply_curvature(const CurvatureInputs& in, const std::vector<TangentFrame>& frames,
-                     const std::vector<TriangleCurvature>& curvature,
-                     const std::vector<char>& stays, double shift, const Positions2& a,
-                     Positions3& y, Positions2& out) {
-  const Index m = static_cast<Index>(a.size());
-  for (Index i = 0; i < m; ++i) y[i] = stays[i] ? Vec3::Zero() : Vec3(frames[i].Q * a[i]);
-  Positions3 hy(m, Vec3::Zero());
+// A patch triangle the curvature acts on (a rest shape, a movable corner): its corners' movable
+// slots (-1: stays), the gradient rows of its deformation gradient, and the energy's curvature
+// there. Gathered once a measure: every conjugate-gradient iteration reads them.
+struct CurvedTriangle {
+  std::array<Index, 3> slot;
+  std::array<Vec2, 3> G;
+  TriangleCurvature curvature;
+};
+
+std::vector<CurvedTriangle> curved_triangles(const CurvatureInputs& in, const Positions3& x,
+                                             const std::vector<Vec3>& frame_normals) {
+  std::vector<CurvedTriangle> out;
+  out.reserve(in.mesh.count);
   for (Index t = 0; t < in.mesh.count; ++t) {
     const Eigen::Matrix2d& D = in.mesh.rest_inverse[t];
     if (!has_rest_shape(D)) continue;
     const Triangle& tri = in.mesh.triangles[t];
-    const std::array<Vec2, 3> G = gradient_rows(D);
-    std::array<Index, 3> slot{};
+    const std::array<Index, 3> slot{in.movable_slot[tri[0]], in.movable_slot[tri[1]],
+                                    in.movable_slot[tri[2]]};
+    if (slot[0] < 0 && slot[1] < 0 && slot[2] < 0) continue;
+    out.push_back({slot, gradient_rows(D),
+                   arap_curvature(deformation_gradient(x, tri, D), in.scale, frame_normals[t])});
+  }
+  return out;
+}
+
+// (Q^T H Q + shift I) a over the movable vertices; zero on those that stay. `y` and `hy` are
+// work space.
+void apply_curvature(const std::vector<CurvedTriangle>& curved, double weight,
+                     const std::vector<TangentFrame>& frames, const std::vector<char>& stays,
+                     double shift, const Positions2& a, Positions3& y, Positions3& hy,
+                     Positions2& out) {
+  const Index m = static_cast<Index>(a.size());
+  for (Index i = 0; i < m; ++i) y[i] = stays[i] ? Vec3::Zero() : Vec3(frames[i].Q * a[i]);
+  hy.assign(m, Vec3::Zero());
+  for (const CurvedTriangle& c : curved) {
     Mat32 dJ = Mat32::Zero();
     for (int k = 0; k < 3; ++k)
-      if ((slot[k] = in.movable_slot[tri[k]]) >= 0) dJ += y[slot[k]] * G[k].transpose();
+      if (c.slot[k] >= 0) dJ += y[c.slot[k]] * c.G[k].transpose();
     if (dJ.isZero(0)) continue;
-    const Mat32 dE = in.mesh.weight * curvature[t].times(dJ);
+    const Mat32 dE = weight * c.curvature.times(dJ);
     for (int k = 0; k < 3; ++k)
-      if (slot[k] >= 0) hy[slot[k]] += dE * G[k];
+      if (c.slot[k] >= 0) hy[c.slot[k]] += dE * c.G[k];
   }
   for (Index i = 0; i < m; ++i)
     out[i] = stays[i] ? Vec2::Zero() : Vec2(frames[i].Q.transpose() * hy[i] + shift * a[i]);
@@ -215,14 +237,10 @@ double curvature_gain(const SlideState& state, const FrameSurface& surface,
                       const CurvatureInputs& in, const Positions3& rho) {
   const Index m = static_cast<Index>(rho.size());
   const std::vector<TangentFrame> frames = smooth_tangent_frames(surface, movable, state);
-  std::vector<TriangleCurvature> curvature(in.mesh.count);
-  for (Index t = 0; t < in.mesh.count; ++t)
-    if (const Eigen::Matrix2d& D = in.mesh.rest_inverse[t]; has_rest_shape(D))
-      curvature[t] = arap_curvature(deformation_gradient(state.x, in.mesh.triangles[t], D),
-                                    in.scale, surface.normals[t]);
+  const std::vector<CurvedTriangle> curved = curved_triangles(in, state.x, surface.normals);
   std::vector<char> stays(m);
   Positions2 r(m), z, p(m, Vec2::Zero()), Ap(m), work;
-  Positions3 y(m);
+  Positions3 y(m), hy;
   for (Index i = 0; i < m; ++i) {
     stays[i] = frames[i].crushed;
     r[i] = stays[i] ? Vec2::Zero() : Vec2(frames[i].Q.transpose() * rho[i]);
@@ -238,7 +256,7 @@ double curvature_gain(const SlideState& state, const FrameSurface& surface,
     const double beta = it == 0 ? 0.0 : rz / rz_last;
     for (Index i = 0; i < m; ++i) p[i] = z[i] + beta * p[i];
     rz_last = rz;
-    apply_curvature(in, frames, curvature, stays, metric.shift, p, y, Ap);
+    apply_curvature(curved, in.mesh.weight, frames, stays, metric.shift, p, y, hy, Ap);
     const double pAp = dot(p, Ap);
     if (!(pAp > 0)) break;
     const double alpha = rz / pAp;
