@@ -122,18 +122,25 @@ double ramp(double s) {
 }
 double ramp_slope(double s) { return s <= 0 || s >= 1 ? 0.0 : 6 * s * (1 - s); }
 
-// The ramp of triangle e's edge k at u, and its slope along the edge's normal: from 0 at -w to 1
-// at +w of u's signed distance to the edge's line; an edge that is not blended (w = 0) keeps its
-// own side only (`own`: u's own triangle, which counts round-off beside it as inside).
+// The ramp of triangle e's edge k at u, and its slope along the edge's normal when `slope` is not
+// null: from 0 at -w to 1 at +w of u's signed distance to the edge's line; an edge that is not
+// blended (w = 0) keeps its own side only (`own`: u's own triangle, which counts round-off beside
+// it as inside).
 double edge_ramp(const BlendEdges& e, int k, const Vec2& u, bool own, double* slope) {
   const double h = e.normal[k].dot(u) - e.offset[k];
   const double w = e.width[k];
   if (!(w > 0)) {
-    *slope = 0;
+    if (slope) *slope = 0;
     return h >= 0 || own ? 1.0 : 0.0;
   }
+  // Beyond the band's outer line the ramp is 0 (the quotient below would be <= 0): most triangles
+  // listed around a point end here, so the divisions are skipped.
+  if (h + w <= 0) {
+    if (slope) *slope = 0;
+    return 0.0;
+  }
   const double s = (h + w) / (2 * w);
-  *slope = ramp_slope(s) / (2 * w);
+  if (slope) *slope = ramp_slope(s) / (2 * w);
   return ramp(s);
 }
 
@@ -163,11 +170,20 @@ double distance_to_triangle(const Chart& chart, Index t, const Vec2& u, Vec2* gr
   return best;
 }
 
+// Whether u is certainly within `radius` of chart triangle t: within it of a corner, with a margin
+// far above the round-off of distance_to_triangle, so that the two never disagree.
+bool surely_within(const Chart& chart, Index t, const Vec2& u, double radius) {
+  constexpr double kMargin = 1 - 1e-9;
+  const double limit = kMargin * radius * radius;
+  for (Index v : chart.triangles[t])
+    if ((chart.uv[v] - u).squaredNorm() <= limit) return true;
+  return false;
+}
+
 // Whether triangle f's bands reach u, a point off f (every ramp above 0).
 bool in_bands(const BlendEdges& e, const Vec2& u) {
-  double slope;
   for (int k = 0; k < 3; ++k)
-    if (!(edge_ramp(e, k, u, false, &slope) > 0)) return false;
+    if (!(edge_ramp(e, k, u, false, nullptr) > 0)) return false;
   return true;
 }
 
@@ -237,10 +253,10 @@ Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* j
     // The point's own triangle always counts: it keeps the sum above zero.
     if (f != t && (u.x() < box[0] || u.y() < box[1] || u.x() > box[2] || u.y() > box[3])) continue;
     const BlendEdges& e = blend.edges[f];
-    std::array<double, 3> r, dr;
+    std::array<double, 3> r{}, dr{};
     bool outside = false;
     for (int k = 0; k < 3 && !outside; ++k) {
-      r[k] = edge_ramp(e, k, u, f == t, &dr[k]);
+      r[k] = edge_ramp(e, k, u, f == t, jacobian ? &dr[k] : nullptr);
       outside = !(r[k] > 0);
     }
     if (outside) continue;
@@ -249,7 +265,7 @@ Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* j
     if (jacobian)
       slope = dr[0] * r[1] * r[2] * e.normal[0] + r[0] * dr[1] * r[2] * e.normal[1] +
               r[0] * r[1] * dr[2] * e.normal[2];
-    if (f != t && std::isfinite(e.reach)) {
+    if (f != t && std::isfinite(e.reach) && !surely_within(surface.chart, f, u, e.reach / 2)) {
       // The fade from reach / 2 to reach; constant near the triangle, where the distance has a
       // corner. (The point lies on its own triangle t: no fade there.)
       Vec2 away;
