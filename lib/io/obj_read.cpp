@@ -99,6 +99,32 @@ bool overflows(std::string_view t) {
 // A face corner is v, v/vt, v//vn or v/vt/vn: at most two slashes.
 constexpr std::ptrdiff_t kMaxCornerSlashes = 2;
 
+// A corner's texture and normal parts (after its first and second '/'): each empty (`1//3`), or a
+// whole number but 0, negative = relative. They are not read (vt and vn lines are kept as text),
+// so they need not name an existing vt or vn; but a part that is no index (`1/x/1`, `1/0.5`) is
+// not a corner as OBJ writes one: a corrupt export, or words joined to a face line.
+template <typename Fail>
+void check_corner_parts(std::string_view entry, Fail&& fail) {
+  size_t slash = entry.find('/');
+  for (const char* part_name : {"texture", "normal"}) {
+    if (slash == std::string_view::npos) return;
+    const size_t next = entry.find('/', slash + 1);
+    const std::string_view part =
+        entry.substr(slash + 1, next == std::string_view::npos ? next : next - slash - 1);
+    slash = next;
+    if (part.empty()) continue;
+    const auto idx = parse_integer(part);
+    if (idx && *idx != 0) continue;
+    const std::string what = "face corner " + quoted(entry) + ": " + part_name + " index ";
+    if (idx) fail(what + "0 (OBJ indices start at 1)");
+    const std::string_view digits = part.substr(part[0] == '+' || part[0] == '-' ? 1 : 0);
+    const bool too_large =
+        !digits.empty() && digits.find_first_not_of("0123456789") == std::string_view::npos;
+    fail(what + quoted(part) + (too_large ? " is too large" : " is not a whole number") +
+         " (a corner is v, v/vt, v//vn or v/vt/vn, each a whole number)");
+  }
+}
+
 // Numbers a `v` line may hold after x y z: w (OBJ's optional weight), or a colour r g b or
 // r g b a as exporters write them (kept in the text, unread).
 constexpr size_t kMaxVertexExtras = 4;
@@ -189,6 +215,7 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
         const std::string_view first = entry.substr(0, entry.find('/'));
         const auto idx = parse_integer(first);
         if (!idx) fail("face entry " + quoted(entry) + " is not a vertex index");
+        check_corner_parts(entry, fail);
         long long v = *idx;
         if (v == 0) throw_input(path, line, "face index 0 (OBJ indices start at 1)");
         if (v < 0) {

@@ -33,13 +33,15 @@ struct ObjMesh {
 /// Parses OBJ text. Only `v` (first three numbers; up to 4 more, a w or a colour r g b [a], are
 /// kept in the text but ignored) and `f` (first field of each `v/vt/vn` entry; 1-based,
 /// negative = relative to the vertices so far; forward references allowed) matter; other
-/// statements are kept as text. `#` starts a comment.
+/// statements are kept as text. `#` starts a comment. A corner's vt and vn parts are checked
+/// (empty, or a whole number but 0) but not read: they need not name an existing vt or vn.
 /// \param path used in messages only.
 /// \throw Error(Input) "path:line: what" for: non-numeric, missing or non-finite coordinates
 ///        (a number nearer 0 than the smallest subnormal reads as 0), more than 4 numbers or
 ///        anything but a number after them, a face corner of more than 3 parts (v/vt/vn/x),
-///        face index 0 or out of range, faces with fewer than 3 or repeated vertices, binary data,
-///        line continuations, a file with no vertices.
+///        a corner's vt or vn part that is not a whole number or is 0, face index 0 or out of
+///        range, faces with fewer than 3 or repeated vertices, binary data, line continuations,
+///        a file with no vertices.
 ObjMesh parse_obj(const std::string& path, std::string bytes);
 
 /// Reads and parses an OBJ file (see parse_obj).

@@ -160,6 +160,16 @@ variant word.obj '20s/.*/f 3 4 eight 7/'
 expect obj_face_entry_not_index 3 "word.obj:20: face entry 'eight' is not a vertex index" --patch $P "$tmp/word.obj" $F
 variant corner.obj '20s|.*|f 3 4/1/1/1 8 7|'
 expect obj_face_corner_four_parts 3 "corner.obj:20: face corner '4/1/1/1' has more than 3 parts" --patch $P "$tmp/corner.obj" $F
+# A corner's texture and normal parts are not read, but each is empty or a whole number.
+variant corner_vt.obj '20s|.*|f 3/x/1 4/y/2 8/z/3 7/w/4|'
+expect obj_face_corner_texture_not_a_number 3 "corner_vt.obj:20: face corner '3/x/1': texture index 'x' is not a whole number (a corner is v, v/vt, v//vn or v/vt/vn, each a whole number)" --patch $P "$tmp/corner_vt.obj" $F
+variant corner_vn.0001.obj '20s|.*|f 3//1 4//1 8//1.5 7//1|' $F
+expect obj_face_corner_normal_not_a_number 3 "corner_vn.0001.obj:20: face corner '8//1.5': normal index '1.5' is not a whole number" --patch $P $B "$tmp/corner_vn.0001.obj"
+variant corner_vt0.obj '20s|.*|f 3/1 4/0 8/1 7/1|'
+expect obj_face_corner_texture_index_0 3 "corner_vt0.obj:20: face corner '4/0': texture index 0 (OBJ indices start at 1)" --patch $P "$tmp/corner_vt0.obj" $F
+# Valid: an empty part (1//3), relative parts, vt and vn that no line defines (they are not read).
+variant corner_parts.obj '20s|.*|f 3//1 4/-1/-1 8/2/ 7/+3/3|'
+expect obj_face_corner_parts_valid 0 "1 patches, 4 sliding vertices" --patch $P "$tmp/corner_parts.obj" $F
 variant cont.obj '20s/.*/f 3 4 \\/'
 expect obj_line_continuation 3 "cont.obj:20: line continuation" --patch $P "$tmp/cont.obj" $F
 # Valid: relative indices, v lines after the faces, slashes and extra statements.

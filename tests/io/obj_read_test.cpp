@@ -106,6 +106,36 @@ TEST(ObjRead, AFaceCornerHasAtMostThreeParts) {
             "v/vt/vn");
 }
 
+// A corner's texture and normal parts are not read, but each is empty or a whole number but 0:
+// `1//3` is standard, relative (negative) ones are valid, and no vt or vn need exist.
+TEST(ObjRead, ACornersTextureAndNormalPartsAreWholeNumbers) {
+  const ObjMesh obj = parse_obj(
+      "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1/1 2//2 3/-1/-1 4/+7/\nf -4/9 -3//1 -1\n");
+  EXPECT_EQ(obj.mesh.face_count(), 2);
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_EQ(error_of(tri + "f 1/x/1 2/y/2 3/z/3\n"),
+            "t.obj:4: face corner '1/x/1': texture index 'x' is not a whole number (a corner is "
+            "v, v/vt, v//vn or v/vt/vn, each a whole number)");
+  EXPECT_EQ(error_of(tri + "f 1//1 2//2 3//n\n"),
+            "t.obj:4: face corner '3//n': normal index 'n' is not a whole number (a corner is v, "
+            "v/vt, v//vn or v/vt/vn, each a whole number)");
+  EXPECT_EQ(error_of(tri + "f 1/1/1 2/1.5/1 3/1/1\n"),
+            "t.obj:4: face corner '2/1.5/1': texture index '1.5' is not a whole number (a corner "
+            "is v, v/vt, v//vn or v/vt/vn, each a whole number)");
+  EXPECT_EQ(error_of(tri + "f 1/1 2/0 3/1\n"),
+            "t.obj:4: face corner '2/0': texture index 0 (OBJ indices start at 1)");
+  EXPECT_EQ(error_of(tri + "f 1/1/99999999999999999999 2 3\n"),
+            "t.obj:4: face corner '1/1/99999999999999999999': normal index "
+            "'99999999999999999999' is too large (a corner is v, v/vt, v//vn or v/vt/vn, each a "
+            "whole number)");
+  // Cut short: the file's last line has no end of line.
+  EXPECT_EQ(error_of(tri + "f 1/1 2/1 3/"), "");
+  EXPECT_EQ(error_of(tri + "f 1/1 2/1 3/-"),
+            "t.obj:4: face corner '3/-': texture index '-' is not a whole number (a corner is v, "
+            "v/vt, v//vn or v/vt/vn, each a whole number) (the last line has no end of line: is "
+            "the file truncated?)");
+}
+
 // The first bad line decides the message, whatever comes after it.
 TEST(ObjRead, TheFirstBadLineIsTheOneReported) {
   EXPECT_EQ(error_of(std::string("v 0 0 0\nv 0 x 0\nv \x00\n", 20)),
