@@ -290,6 +290,7 @@ void parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
     throw;
   }
   check_config_keys(app);
+  check_config_flags(app);
   try {
     check_options(app, o);
   } catch (const CLI::ParseError& e) {

@@ -71,6 +71,16 @@ bool is_about(const std::string& message, const CLI::Option& option) {
          message.rfind("Could not convert: " + name + " ", 0) == 0;
 }
 
+// The boolean forms CLI11's documentation gives for a config file (README, "Configuration file"),
+// compared in lower case.
+bool is_documented_boolean(std::string value) {
+  value = CLI::detail::to_lower(value);
+  for (const char* form :
+       {"true", "false", "on", "off", "yes", "no", "1", "0", "enable", "disable"})
+    if (value == form) return true;
+  return false;
+}
+
 std::string full_name(const ConfigKey& key) {
   std::string name;
   for (const std::string& parent : key.parents) name += parent + ".";
@@ -135,6 +145,36 @@ void check_config_keys(const CLI::App& app) {
       throw CLI::ConfigError(path + ":" + std::to_string(key.line) + ": unknown key '" +
                              full_name(key) + "'; the nearest option is '" +
                              nearest(key.name, option_names(app)) + "'");
+}
+
+void check_config_flags(const CLI::App& app) {
+  const CLI::Option* config = app.get_config_ptr();
+  if (config == nullptr || config->count() == 0) return;
+  const std::string path = config->results().front();
+  std::vector<CLI::ConfigItem> items;
+  try {
+    items = app.get_config_formatter()->from_file(path);
+  } catch (const CLI::Error&) {
+    return;  // the parse named it
+  }
+  for (const CLI::ConfigItem& item : items) {
+    const CLI::Option* option = option_of(app, item.parents, item.name);
+    if (option == nullptr || option->get_expected_min() != 0 || item.inputs.size() != 1) continue;
+    const std::string& value = item.inputs.front();
+    if (is_documented_boolean(value)) continue;
+    // A flag on the command line wins over the file's (which is then not read), as for values;
+    // CLI11 holds the file's value as given, an empty one as "true".
+    if (option->results() != std::vector{option->get_flag_value(item.name, value)}) continue;
+    std::ifstream in(path);
+    long line = 0;
+    for (const ConfigKey& key : config_keys(in))
+      if (key.name == item.name && key.parents.empty()) line = key.line;
+    throw CLI::ConfigError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) +
+                           ": key '" + item.name + "': " + option->get_name() +
+                           (value.empty() ? " has an empty value" : " = " + value) +
+                           ": a flag takes true or false (or on/off, yes/no, 1/0, "
+                           "enable/disable), or the key alone for true");
+  }
 }
 
 void name_config_value(const CLI::App& app, const CLI::ParseError& error) {

@@ -30,6 +30,13 @@ std::vector<ConfigKey> config_keys(std::istream& in);
 ///        (nearest by edit distance among the options a config file may set).
 void check_config_keys(const CLI::App& app);
 
+/// After a parse: with a --config file, each flag (an option without a value: --keep-going, -q)
+/// whose value the file gave takes one of the boolean forms CLI11 documents for config files,
+/// in any case: true/false, on/off, yes/no, 1/0, enable/disable, or the key alone (= true).
+/// CLI11 reads any other integer as on (`keep-going = 5`; a negative one as off).
+/// \throw CLI::ConfigError "<file>:<line>: key '<key>': --<name> = <value>: a flag takes ...".
+void check_config_flags(const CLI::App& app);
+
 /// After a parse or a check of the options failed with `error`: when the value refused is a
 /// --config file's (the option holds that file's value, or was refused as the file was read),
 /// throws the same message naming the file, the key's line and the key.

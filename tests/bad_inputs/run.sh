@@ -589,6 +589,18 @@ printf 'patch = ["all.txt"]\n# farm\nthreads = "two"\n' >"$tmp/type.toml"
 expect config_value_wrong_type 2 "type.toml:3: key 'threads': --threads: Value two not in range 0 to 1024" --config "$tmp/type.toml" $B $F
 printf 'patch = ["all.txt"]\nkeep-going = "maybe"\n' >"$tmp/flag.toml"
 expect config_flag_not_a_boolean 2 "flag.toml:2: key 'keep-going': Could not convert: --keep-going = maybe" --config "$tmp/flag.toml" $B $F
+# A flag takes true/false (on/off, yes/no, 1/0, enable/disable) or its key alone; CLI11 read any
+# other number as on (5) or off (-1), and an empty value as on. A flag given on the command line
+# wins, and the file's value is not read.
+printf 'patch = ["all.txt"]\n# farm\nkeep-going = 5\n' >"$tmp/flag5.toml"
+expect config_flag_a_number 2 "flag5.toml:3: key 'keep-going': --keep-going = 5: a flag takes true or false (or on/off, yes/no, 1/0, enable/disable), or the key alone for true" --config "$tmp/flag5.toml" $B $F
+printf 'patch = ["all.txt"]\nq = -1\n' >"$tmp/flag_short.toml"
+expect config_flag_negative_short_key 2 "flag_short.toml:2: key 'q': --quiet = -1: a flag takes true or false" --config "$tmp/flag_short.toml" $B $F
+printf 'patch = ["all.txt"]\nno-slide =\n' >"$tmp/flag_empty.toml"
+expect config_flag_empty_value 2 "flag_empty.toml:2: key 'no-slide': --no-slide has an empty value: a flag takes true or false" --config "$tmp/flag_empty.toml" $B $F
+printf 'patch = ["all.txt"]\nkeep-going = Yes\nquiet = "false"\nrequire-converged = 0\nbind-is-frame = OFF\n' >"$tmp/flag_words.toml"
+expect config_flag_documented_forms_valid 0 "1 frames slid" --config "$tmp/flag_words.toml" $B $F
+expect config_flag_overridden_valid 0 "1 frames slid" --keep-going --config "$tmp/flag5.toml" $B $F
 # CLI11's ranges let NaN through; bands narrower than round-off read as converged: refused.
 expect option_nan 2 "--convergence: Value nan is not a number" --convergence nan --patch $P $B $F
 expect option_nan_blend 2 "--blend: Value NaN is not a number" --blend NaN --patch $P $B $F
