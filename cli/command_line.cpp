@@ -221,8 +221,10 @@ void add_controls(CLI::App& app, CliOptions& o) {
                      "chart, staying on the surface; paper: lerp(frame, slid, w) in 3D)")
           ->type_name("FILE")
           ->group(controls);
-  app.add_option("--weights-from-obj-color", o.run.weights_from_obj_color,
-                 "Slide weights from the bind OBJ's vertex colours (v x y z r g b), this channel")
+  app.add_option(
+         "--weights-from-obj-color", o.run.weights_from_obj_color,
+         "Slide weights from the bind OBJ's vertex colours (v x y z r g b, or r g b a: alpha "
+         "ignored), this channel")
       ->check(CLI::IsMember({"r", "g", "b"}))
       ->excludes(weights)
       ->group(controls);

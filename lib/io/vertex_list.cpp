@@ -157,11 +157,13 @@ std::vector<double> obj_color_weights(const std::string& path, const ObjText& ob
       while (i < rest.size() && !(rest[i] == ' ' || rest[i] == '\t' || rest[i] == '\r')) ++i;
       tok.push_back(rest.substr(s, i - s));
     }
-    if (tok.size() != 3)
+    // r g b, or r g b a as some exporters write it: the alpha is not a channel a weight may come
+    // from, and is ignored (the OBJ reader has checked it is a number).
+    if (tok.size() != 3 && tok.size() != 4)
       throw_input(path, line,
                   "vertex " + std::to_string(v) +
-                      " has no colour: expected 'v x y z r g b' for slide weights from "
-                      "vertex colours");
+                      " has no colour: expected 'v x y z r g b' or 'v x y z r g b a' for slide "
+                      "weights from vertex colours");
     const auto c = parse_double(tok[channel]);
     if (!c) throw_input(path, line, "colour " + quoted_token(tok[channel]) + " is not a number");
     if (!(*c >= 0 && *c <= 1))

@@ -38,10 +38,10 @@ std::vector<Index> parse_vertex_list(const std::string& path, const std::string&
 /// Reads and parses a vertex-id list file (see parse_vertex_list).
 std::vector<Index> read_vertex_list(const std::string& path, Index vertex_count);
 
-/// Slide weights from OBJ vertex colours `v x y z r g b`: channel 0, 1 or 2 (r, g, b) of every
-/// vertex. \param path used in messages.
-/// \throw Error(Input) "path:line: what" for a `v` line without exactly three colour numbers
-///        after x y z, or a colour outside [0, 1].
+/// Slide weights from OBJ vertex colours `v x y z r g b` or `v x y z r g b a`: channel 0, 1 or 2
+/// (r, g, b) of every vertex; an alpha is ignored. \param path used in messages.
+/// \throw Error(Input) "path:line: what" for a `v` line without three or four colour numbers
+///        after x y z, or a colour (r, g or b, the channel read) outside [0, 1].
 std::vector<double> obj_color_weights(const std::string& path, const ObjText& obj, int channel);
 
 }  // namespace skinslide

@@ -125,6 +125,16 @@ variant colour.0001.obj '7s/$/ 0.5 0.25 0.125 1/' $F
 expect obj_vertex_colour_valid 0 "1 frames slid" --patch $P $B "$tmp/colour.0001.obj"
 sed -n 7p "$tmp/out/obj_vertex_colour_valid/colour.0001.obj" | grep -q ' 0.5 0.25 0.125 1$' ||
   fail "obj_vertex_colour_valid: the slid vertex lost its colour"
+# Slide weights from a colour channel: r g b, or r g b a with the alpha ignored (the weights, so
+# the slide, of the same colours without it); a vertex with a w only has no colour.
+awk '/^v /{print $0, "0.5 0.25 1"; next} {print}' $B >"$tmp/rgb.obj"
+awk '/^v /{print $0, "0.5 0.25 1 0.75"; next} {print}' $B >"$tmp/rgba.obj"
+expect obj_colour_weights_rgb_valid 0 "1 frames slid" --weights-from-obj-color g --patch $P "$tmp/rgb.obj" $F
+expect obj_colour_weights_alpha_ignored_valid 0 "1 frames slid" --weights-from-obj-color g --patch $P "$tmp/rgba.obj" $F
+cmp -s "$tmp/out/obj_colour_weights_rgb_valid/$F" "$tmp/out/obj_colour_weights_alpha_ignored_valid/$F" ||
+  fail "obj_colour_weights_alpha_ignored_valid: not the slide of the same colours without alpha"
+awk '/^v /{print $0, "1"; next} {print}' $B >"$tmp/w_only.obj"
+expect obj_colour_weights_w_only 3 "w_only.obj:2: vertex 0 has no colour: expected 'v x y z r g b' or 'v x y z r g b a' for slide weights from vertex colours" --weights-from-obj-color r --patch $P "$tmp/w_only.obj" $F
 
 # A statement meant as a vertex but misspelt would be skipped and shift every later index.
 variant upper.obj '7s/^v /V /'

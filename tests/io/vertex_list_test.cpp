@@ -100,6 +100,19 @@ TEST(ObjColorWeights, ReadsOneChannel) {
   EXPECT_EQ(obj_color_weights("c.obj", obj.text, 2), (std::vector<double>{0.3, 0.5, 0}));
 }
 
+// An alpha after r g b is ignored: the weights are those of the same file without it.
+TEST(ObjColorWeights, AnAlphaIsIgnored) {
+  const ObjMesh obj = parse_obj("c.obj",
+                                "v 0 0 0 0.1 0.2 0.3 1\nv 1 0 0 1 0 0.5 0.25 # red\r\n"
+                                "v 0 1 0 0 0 0\nf 1 2 3\n");
+  EXPECT_EQ(obj_color_weights("c.obj", obj.text, 0), (std::vector<double>{0.1, 1, 0}));
+  EXPECT_EQ(obj_color_weights("c.obj", obj.text, 1), (std::vector<double>{0.2, 0, 0}));
+  EXPECT_EQ(obj_color_weights("c.obj", obj.text, 2), (std::vector<double>{0.3, 0.5, 0}));
+  // Not even an alpha outside [0, 1] is looked at.
+  EXPECT_EQ(obj_color_weights("c.obj", parse_obj("c.obj", "v 0 0 0 0.5 0.5 0.5 255\n").text, 1),
+            (std::vector<double>{0.5}));
+}
+
 TEST(ObjColorWeights, RejectsMissingOrOutOfRangeColours) {
   auto error_of = [](const std::string& text) -> std::string {
     try {
@@ -111,8 +124,11 @@ TEST(ObjColorWeights, RejectsMissingOrOutOfRangeColours) {
     return "";
   };
   EXPECT_EQ(error_of("v 0 0 0 1 1 1\n\nv 1 0 0\nv 0 1 0 1 1 1\nf 1 2 3\n"),
-            "c.obj:3: vertex 1 has no colour: expected 'v x y z r g b' for slide weights from "
-            "vertex colours");
+            "c.obj:3: vertex 1 has no colour: expected 'v x y z r g b' or 'v x y z r g b a' for "
+            "slide weights from vertex colours");
+  EXPECT_EQ(error_of("v 0 0 0 1\nv 1 0 0 1 1 1\nv 0 1 0 1 1 1\nf 1 2 3\n"),
+            "c.obj:1: vertex 0 has no colour: expected 'v x y z r g b' or 'v x y z r g b a' for "
+            "slide weights from vertex colours");
   EXPECT_EQ(error_of("v 0 0 0 1 1 1\nv 1 0 0 0 255 0\nv 0 1 0 1 1 1\nf 1 2 3\n"),
             "c.obj:2: colour 255 is outside [0, 1] (slide weights are colours in 0..1)");
 }
