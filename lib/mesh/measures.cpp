@@ -32,12 +32,20 @@ void require_computable_span(const Positions3& points, const std::vector<Index>&
   if (points.empty()) return;
   // Halved first: the diagonal of a box near the largest doubles would itself overflow.
   const double span = 2 * (0.5 * hi - 0.5 * lo).stableNorm();
-  if (span <= kLargestPatchSpan) return;
+  if (span == 0 || (span >= kSmallestPatchSpan && span <= kLargestPatchSpan)) return;
   const Vec3& p = points[largest];
+  const std::string where = "vertex " + std::to_string(ids[largest]) + " at (" + log_number(p[0]) +
+                            ", " + log_number(p[1]) + ", " + log_number(p[2]) +
+                            "): coordinates too ";
+  if (span < kSmallestPatchSpan)
+    throw Error(ErrorKind::Input,
+                where + "small: the patch spans " + log_number(span) +
+                    ", under the smallest span of " + log_number(kSmallestPatchSpan) +
+                    " (frames are compared with the bind, and caches hold positions, in float32, "
+                    "which loses precision under 1e-38; lengths' squares underflow a double "
+                    "further down); scale the mesh up");
   throw Error(ErrorKind::Input,
-              "vertex " + std::to_string(ids[largest]) + " at (" + log_number(p[0]) + ", " +
-                  log_number(p[1]) + ", " + log_number(p[2]) +
-                  "): coordinates too large: the patch spans " + log_number(span) +
+              where + "large: the patch spans " + log_number(span) +
                   ", and its lengths' squares and products overflow a double beyond a span of " +
                   log_number(kLargestPatchSpan) + "; scale the mesh down");
 }

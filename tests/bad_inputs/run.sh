@@ -263,6 +263,17 @@ awk '/^v /{print "v", $2 "e300", $3 "e300", $4 "e300"; next} {print}' $B >"$tmp/
 expect degenerate_bind_overflowing_coordinates 3 "patch 0 (face 0 ($tmp/vast.obj:18), 9 faces): vertex 3 at (3e+300, 0, 0): coordinates too large" --patch $P "$tmp/vast.obj" $F
 awk '/^v /{print "v", $2 "e300", $3 "e300", $4 "e300"; next} {print}' $F >"$tmp/vast.0001.obj"
 expect degenerate_frame_overflowing_coordinates_paper 3 "vast.0001.obj: patch 0: vertex 3 at (3e+300, 0, 9e+299): coordinates too large" --method paper --patch $P $B "$tmp/vast.0001.obj"
+# Coordinates near 1e-300: lengths' squares underflow (they read as "zero length" once), and under
+# 1e-38 float32 (the at-rest comparison, caches) loses precision; a span under 1e-30 is refused,
+# naming the vertex, in the bind and in a frame. Millimetres in kilometres (1e-6) slide as ever.
+awk '/^v /{print "v", $2 "e-300", $3 "e-300", $4 "e-300"; next} {print}' $B >"$tmp/speck.obj"
+awk '/^v /{print "v", $2 "e-300", $3 "e-300", $4 "e-300"; next} {print}' $F >"$tmp/speck.0001.obj"
+expect degenerate_bind_underflowing_coordinates 3 "patch 0 (face 0 ($tmp/speck.obj:18), 9 faces): vertex 3 at (3e-300, 0, 0): coordinates too small: the patch spans 4.243e-300, under the smallest span of 1e-30" --patch $P "$tmp/speck.obj" "$tmp/speck.0001.obj"
+expect degenerate_frame_underflowing_coordinates_paper 3 "speck.0001.obj: patch 0: vertex 3 at (3e-300, 0, 9e-301): coordinates too small" --method paper --patch $P $B "$tmp/speck.0001.obj"
+awk '/^v /{print "v", $2 "e-6", $3 "e-6", $4 "e-6"; next} {print}' $B >"$tmp/milli.obj"
+awk '/^v /{print "v", $2 "e-6", $3 "e-6", $4 "e-6"; next} {print}' $F >"$tmp/milli.0001.obj"
+expect small_scale_valid 0 "1 frames slid" --patch $P "$tmp/milli.obj" "$tmp/milli.0001.obj"
+expect small_scale_valid_paper 0 "1 frames slid" --method paper --patch $P "$tmp/milli.obj" "$tmp/milli.0001.obj"
 expect degenerate_bind_zero_length_edge_paper 0 "sliding vertices" --method paper --patch $P "$tmp/zero_edge.obj" $F
 expect degenerate_bind_zero_area_paper 0 "sliding vertices" --method paper --patch $P "$tmp/sliver.obj" $F
 

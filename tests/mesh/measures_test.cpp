@@ -26,6 +26,28 @@ TEST(Measures, APatchTooLargeForDoublesIsRefusedNamingAVertex) {
   }
 }
 
+// Under a span of 1e-30 float32 (the at-rest comparison, caches) loses precision and lengths'
+// squares underflow further down (they read as "zero length" once): refused naming the vertex of
+// the largest coordinate. Millimetres in kilometres (1e-6) are fine, and so is a patch on one
+// point (span 0), which the methods handle as a degenerate frame.
+TEST(Measures, APatchTooSmallForDoublesIsRefusedNamingAVertex) {
+  const std::vector<Index> ids = {7, 8, 9};
+  require_computable_span({Vec3(0, 0, 0), Vec3(1e-6, 0, 0), Vec3(0, 1e-6, 0)}, ids);
+  require_computable_span({Vec3(0, 0, 0), Vec3(1e-30, 0, 0), Vec3(0, 1e-30, 0)}, ids);
+  require_computable_span({Vec3(1, 1, 1), Vec3(1, 1, 1), Vec3(1, 1, 1)}, ids);
+  try {
+    require_computable_span({Vec3(0, 0, 0), Vec3(1e-300, 0, 0), Vec3(0, -3e-300, 0)}, ids);
+    ADD_FAILURE() << "a span of 3e-300 was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_EQ(std::string(e.what()),
+              "vertex 9 at (0, -3e-300, 0): coordinates too small: the patch spans 3.162e-300, "
+              "under the smallest span of 1e-30 (frames are compared with the bind, and caches "
+              "hold positions, in float32, which loses precision under 1e-38; lengths' squares "
+              "underflow a double further down); scale the mesh up");
+  }
+}
+
 TEST(Measures, BarLengthsAreEuclidean) {
   const Positions3 p{{0, 0, 0}, {3, 4, 0}, {3, 4, 12}};
   const auto l = bar_lengths(p, {{0, 1}, {1, 2}, {0, 2}});
