@@ -25,6 +25,12 @@ const OptionTable<ElasticOptions>& option_table<ElasticOptions>() {
        "this share of its triangles' inradius wide (1: far less jitter in slow motion, up to 3x "
        "the relax time); 0: on the facets; else at least 0.001. Slid vertices stay on the facets",
        NumberOption<O, double>{&O::blend, 0.0, 2.0}},
+      {"ease-in",
+       "Elastic: the first N rotation fits aim only part of the way from the frame's own stretch "
+       "to the bind's ((r+1)/(N+1) in fit r), so the slide follows one branch of minima from the "
+       "frame: less jitter in slow motion, with --blend 1 --tolerance 1e-6 most; fewer than "
+       "--rotation-fits",
+       NumberOption<O, int>{&O::ease_in, 0, 999}},
   };
   return table;
 }

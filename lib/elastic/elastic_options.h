@@ -7,7 +7,7 @@
 
 namespace skinslide {
 
-/// --rotation-fits, --max-iterations, --tolerance, --convergence, --blend.
+/// --rotation-fits, --max-iterations, --tolerance, --convergence, --blend, --ease-in.
 template <>
 const OptionTable<ElasticOptions>& option_table<ElasticOptions>();
 

@@ -83,6 +83,18 @@ class Relaxation {
     E_ = held_rotation_energy(mesh_, state_.x, s_, R_, &g_);
   }
 
+  // Rule 6's eased round (ElasticOptions::ease_in): the held targets moved back towards the
+  // frame's own deformation gradients, `share` of the way from them to s R.
+  void ease_targets(double share) {
+    for (Index t = 0; t < mesh_.count; ++t) {
+      const Eigen::Matrix2d& D = mesh_.rest_inverse[t];
+      if (!has_rest_shape(D)) continue;
+      const Mat32 own = deformation_gradient(surface_.frame, mesh_.triangles[t], D);
+      R_[t] = (1 - share) * own / s_ + share * R_[t];
+    }
+    E_ = held_rotation_energy(mesh_, state_.x, s_, R_, &g_);
+  }
+
   // Rule 10's first-order measure at the current state, for the rotations last fitted (which
   // minimise the energy there: g_ is the ARAP energy's own gradient).
   FirstOrderGain measure() const {
@@ -230,12 +242,16 @@ class Relaxation {
 };
 
 // Rule 6: the rounds of ARAP's local/global alternation, each relaxed until a step gains less
-// than the tolerance. Returns how the last round ended.
-ElasticStop relax_pass(Relaxation& relaxation, const ElasticOptions& options,
+// than the tolerance; the first pass from the frame eases its first rounds' targets in
+// (ElasticOptions::ease_in), a later pass starts from a relaxed state and aims fully. Returns how
+// the last round ended.
+ElasticStop relax_pass(Relaxation& relaxation, const ElasticOptions& options, bool from_frame,
                        ElasticResult& result) {
   ElasticStop last_round = ElasticStop::SmallGain;
   for (int round = 0; round < options.rotation_fits; ++round) {
     relaxation.fit_rotations();
+    if (from_frame && round < options.ease_in)
+      relaxation.ease_targets((round + 1.0) / (options.ease_in + 1.0));
     const double E_round = relaxation.energy();
     int it = 0;
     last_round = ElasticStop::IterationLimit;
@@ -270,7 +286,7 @@ ElasticStop relax_pass(Relaxation& relaxation, const ElasticOptions& options,
 // whose directions were nearly solved, is not touched.
 void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, ElasticResult& result) {
   relaxation.set_direction_budget(DirectionSolve{}.max_iterations);
-  ElasticStop last_round = relax_pass(relaxation, options, result);
+  ElasticStop last_round = relax_pass(relaxation, options, true, result);
   for (;;) {
     relaxation.fit_rotations();
     const FirstOrderGain gain = relaxation.measure();
@@ -292,11 +308,19 @@ void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, Elastic
       return;
     relaxation.set_direction_budget(budget);
     ++result.escalations;
-    last_round = relax_pass(relaxation, options, result);
+    last_round = relax_pass(relaxation, options, false, result);
   }
 }
 
 }  // namespace
+
+void check_elastic_options(const ElasticOptions& options) {
+  if (options.ease_in >= options.rotation_fits)
+    throw Error(ErrorKind::Usage, "--ease-in " + std::to_string(options.ease_in) +
+                                      " leaves no rotation fit that aims fully: give at most "
+                                      "--rotation-fits - 1 (--rotation-fits is " +
+                                      std::to_string(options.rotation_fits) + ")");
+}
 
 const char* stop_name(ElasticStop stop) {
   switch (stop) {

@@ -39,7 +39,19 @@ struct ElasticOptions {
   /// `scripts/quality.sh`'s slow swings down 1.1-14x, at 1-3.4x the relax time
   /// (tests/bench/elastic.md "A blended surface").
   double blend = 0;
+  /// The first this many rotation fits aim only part of the way from the frame's own stretch to
+  /// the bind's: fit r (from 0) aims at (1 - a) J_frame + a s R with a = (r + 1) / (ease_in + 1),
+  /// then the rest aim at s R. From the frame, where a = 0 is at its minimum, the slide follows
+  /// one branch of minima as the aim moves, instead of stepping into whichever basin the full
+  /// target's first steps reach; the basin changes from frame to frame less often (less jitter
+  /// in slow motion: tests/bench/elastic.md "Easing the target in"). Counts among
+  /// rotation_fits, and must leave at least one fit that aims fully.
+  int ease_in = 0;
 };
+
+/// \throw Error(Usage) for options that no relaxation can honour together (--ease-in that leaves
+/// no full rotation fit).
+void check_elastic_options(const ElasticOptions& options);
 
 /// Bind-time precompute of one patch: plain data, immutable once built, shared by every frame.
 struct ElasticSetup {

@@ -42,7 +42,7 @@ r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
                    "totals", "timings"], list(r)
 assert r["options"] == {"method": "elastic", "rotation_fits": 3, "max_iterations": 100, "tolerance": 3e-4,
-                        "convergence": 0.05, "blend": 0}, r["options"]
+                        "convergence": 0.05, "blend": 0, "ease_in": 0}, r["options"]
 assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving", "loops",
                                  "outer_loop_start", "outer_loop_chosen", "skipped",
                                  "chart_weights"], list(r["patches"][0])
@@ -247,6 +247,7 @@ printf 'density = "paper"\n' >"$tmp/density.toml"
 check "a paper option in a config file is refused with the default method (2)" \
   fails_with 2 "--density: applies to --method paper only" --config "$tmp/density.toml" "${elbow[@]}" -o "$tmp/e00"
 check "a missing config file is a usage error (2)" fails_with 2 "--config" --config "$tmp/none.toml" "${elbow[@]}" -o "$tmp/e0"
+check "--ease-in must leave a fit that aims fully (2)" fails_with 2 "--ease-in 3 leaves no rotation fit that aims fully" --ease-in 3 "${elbow[@]}" -o "$tmp/e01"
 
 # --- progress -----------------------------------------------------------------------------------
 "$bin" "${elbow[@]}" -o "$tmp/log" 2>"$tmp/log.txt"

@@ -110,6 +110,49 @@ TEST(ElasticSlide, ABentGridSlidesOnItsSurfaceAndEvensTheStretch) {
   }
 }
 
+// --ease-in: the first fits aim part of the way from the frame's own stretch; the slide keeps
+// every guarantee, evens the stretch as the default does, and is not the default's slide.
+TEST(ElasticSlide, EasedTargetsKeepTheGuaranteesAndEvenTheStretch) {
+  const PolyMesh mesh = bind_grid();
+  ElasticOptions eased;
+  eased.ease_in = 1;
+  eased.blend = 1;
+  eased.tolerance = 1e-6;
+  ElasticOptions blended = eased;
+  blended.ease_in = 0;
+  const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, eased);
+  const BindSetup plain = bind_setup(mesh, {test::all_faces(mesh)}, blended);
+  for (double angle : {0.5, 1.5, 3.0}) {
+    const Positions3 frame = bent(mesh.positions, angle);
+    const FrameResult r = slide_frame(setup, frame, {.edge_spread = true});
+    expect_guarantees(setup, frame, r);
+    const FrameResult p = slide_frame(plain, frame, {.edge_spread = true});
+    const double e = test::elastic(r.patches[0]).energy_after;
+    const double e_plain = test::elastic(p.patches[0]).energy_after;
+    EXPECT_LT(e, 0.9 * test::elastic(r.patches[0]).energy_before) << "angle " << angle;
+    EXPECT_LT(e, 1.05 * e_plain) << "the last fit aims fully: angle " << angle;
+    EXPECT_LT(r.patches[0].spread_slid, r.patches[0].spread_frame) << "angle " << angle;
+    EXPECT_NE(apply_slide(frame, r.slid), apply_slide(frame, p.slid)) << "angle " << angle;
+  }
+}
+
+TEST(ElasticSlide, EaseInMustLeaveAFitThatAimsFully) {
+  const PolyMesh mesh = bind_grid();
+  ElasticOptions o;
+  o.rotation_fits = 3;
+  o.ease_in = 2;
+  EXPECT_NO_THROW(check_elastic_options(o));
+  o.ease_in = 3;
+  try {
+    bind_setup(mesh, {test::all_faces(mesh)}, o);
+    FAIL() << "--ease-in 3 with 3 fits";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    EXPECT_NE(std::string(e.what()).find("--ease-in 3 leaves no rotation fit"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ElasticSlide, RestFramesComeBackUnchanged) {
   const PolyMesh mesh = bind_grid();
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});

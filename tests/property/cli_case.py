@@ -131,6 +131,9 @@ def build(seed, meshes, ctx):
                                                else ["1e-6", "3e-4", "0.01", "1"])]
         if rng.random() < 0.3:
             opts += ["--blend", rng.choice(["0", "0.3", "1", "2"])]
+        fits = int(opts[opts.index("--rotation-fits") + 1]) if "--rotation-fits" in opts else 3
+        if fits > 1 and rng.random() < 0.2:
+            opts += ["--ease-in", str(rng.randrange(1, fits))]
     else:
         if rng.random() < 0.3:
             opts += ["--density", rng.choice(["paper", "inverse", "length", "uniform"])]
@@ -392,7 +395,7 @@ def write(case, folder):
         for flag, value in pairs:
             if flag in ("--strength", "--rotation-fits", "--max-iterations", "--q-floor",
                         "--cg-max-iterations", "--lookup-size", "--tolerance", "--cg-tolerance",
-                        "--blend"):
+                        "--blend", "--ease-in"):
                 cfg.append(f"{flag[2:]} = {value}")
             elif flag in ("--method", "--density", "--holes", "--frame-solver", "--locate"):
                 cfg.append(f'{flag[2:]} = "{value}"')

@@ -22,7 +22,8 @@ PY_OPTIONS = {"--rotation-fits": ("rotation_fits", int), "--max-iterations": ("m
               "--holes": ("holes", str), "--q-floor": ("q_floor", float),
               "--frame-solver": ("frame_solver", str), "--cg-tolerance": ("cg_tolerance", float),
               "--cg-max-iterations": ("cg_max_iterations", int), "--locate": ("locate", str),
-              "--lookup-size": ("lookup_size", int), "--blend": ("blend", float)}
+              "--lookup-size": ("lookup_size", int), "--blend": ("blend", float),
+              "--ease-in": ("ease_in", int)}
 
 
 _read = {}

@@ -201,12 +201,16 @@ def test_option_specs_declare_what_the_slider_takes():
         if spec["method"] is None or spec["type"] == "word":
             continue
         # The ends of the range are taken; past them the Slider refuses, naming the option.
+        # (--ease-in counts among the rotation fits: its largest needs the most fits.)
+        fits = {"rotation_fits": 1000} if spec["name"] == "ease_in" else {}
         for end, past in ((spec["min"], spec["min"] - 1), (spec["max"], spec["max"] * 2)):
             skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes,
-                             method=spec["method"], **{spec["name"]: end})
+                             method=spec["method"], **fits, **{spec["name"]: end})
             with pytest.raises(skinslide.UsageError, match=spec["name"] + " = "):
                 skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes,
-                                 method=spec["method"], **{spec["name"]: past})
+                                 method=spec["method"], **fits, **{spec["name"]: past})
+    with pytest.raises(skinslide.UsageError, match="--ease-in 3 leaves no rotation fit"):
+        skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes, ease_in=3)
 
 
 def test_a_cache_written_by_the_module_is_the_commands(cli, tmp_path):
