@@ -3,18 +3,22 @@
 # and what it costs in flipped triangles, surface error, border motion and popping.
 #
 # Usage: scripts/quality.sh [--cases a,b,...]
-#                           [--methods unslid,paper,elastic,elastic-blend[,elastic-converged][,prototype][,corrective-smooth]]
+#                           [--methods unslid,paper,elastic,elastic-blend,elastic-smooth[,elastic-converged][,prototype][,corrective-smooth]]
 #                           [--keep DIR]
 #
 #   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face,
 #              swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
-#   --methods  default: unslid,paper,elastic,elastic-blend,corrective-smooth
+#   --methods  default: unslid,paper,elastic,elastic-blend,elastic-smooth,corrective-smooth
 #              unslid    the frames as they are (the baseline; same measuring code path)
 #              paper     skinslide --method paper (a binary without --method: its default)
 #              elastic   skinslide --method elastic ("n/a" when the binary has no such method)
 #              elastic-blend
 #                        the same with --blend 1: relaxed on the facets blended smooth ("n/a"
 #                        when the binary has no --blend)
+#              elastic-smooth
+#                        the options for the least jitter: --blend 1 --ease-in 1 --tolerance 1e-6
+#                        (lib/elastic/README.md "Slow close-ups"; "n/a" when the binary has no
+#                        --ease-in)
 #              elastic-converged
 #                        the same with $QUALITY_CONVERGED (default "--tolerance 1e-6
 #                        --max-iterations 1000 --rotation-fits 10"): the elastic energy solved
@@ -130,7 +134,7 @@ export QUALITY_REFERENCE=$REFDIR
 cases=ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
 cases+=,swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
 QUALITY_CONVERGED=${QUALITY_CONVERGED:---tolerance 1e-6 --max-iterations 1000 --rotation-fits 10}
-methods=unslid,paper,elastic,elastic-blend,corrective-smooth
+methods=unslid,paper,elastic,elastic-blend,elastic-smooth,corrective-smooth
 methods_given=0
 keep=
 while [[ $# -gt 0 ]]; do
@@ -152,7 +156,7 @@ for c in "${case_list[@]}"; do
         *) echo "quality.sh: unknown case $c" >&2; exit 2 ;; esac
 done
 for m in "${method_list[@]}"; do
-    case $m in unslid|paper|elastic|elastic-blend|elastic-converged|prototype|corrective-smooth) ;;
+    case $m in unslid|paper|elastic|elastic-blend|elastic-smooth|elastic-converged|prototype|corrective-smooth) ;;
         *) echo "quality.sh: unknown method $m" >&2; exit 2 ;; esac
 done
 
@@ -176,11 +180,12 @@ fi
 [[ -x $SKINSLIDE ]] || { echo "quality.sh: no binary at $SKINSLIDE" >&2; exit 1; }
 
 help_text=$("$SKINSLIDE" --help)
-has_method=0; has_elastic=0; has_blend=0
+has_method=0; has_elastic=0; has_blend=0; has_ease_in=0
 if grep -q -- '--method' <<<"$help_text"; then
     has_method=1
     grep -q 'elastic' <<<"$help_text" && has_elastic=1
     grep -q -- '--blend' <<<"$help_text" && has_blend=1
+    grep -q -- '--ease-in' <<<"$help_text" && has_ease_in=1
 fi
 
 # Blender for the corrective-smooth method: installed only when that method is asked for.
@@ -211,6 +216,9 @@ method_args() {
         elastic) [[ $has_elastic == 1 ]] || return 1; margs=(--method elastic); return 0 ;;
         elastic-blend)
             [[ $has_blend == 1 ]] || return 1; margs=(--method elastic --blend 1); return 0 ;;
+        elastic-smooth)
+            [[ $has_ease_in == 1 ]] || return 1
+            margs=(--method elastic --blend 1 --ease-in 1 --tolerance 1e-6); return 0 ;;
         elastic-converged)
             [[ $has_elastic == 1 ]] || return 1
             local extra
