@@ -17,6 +17,7 @@
 #                        when the binary has no --blend)
 #              elastic-smooth
 #                        the options for the least jitter: --blend 1 --ease-in 1 --tolerance 1e-6
+#                        --max-iterations 30
 #                        (lib/elastic/README.md "Slow close-ups"; "n/a" when the binary has no
 #                        --ease-in)
 #              elastic-converged
@@ -218,7 +219,8 @@ method_args() {
             [[ $has_blend == 1 ]] || return 1; margs=(--method elastic --blend 1); return 0 ;;
         elastic-smooth)
             [[ $has_ease_in == 1 ]] || return 1
-            margs=(--method elastic --blend 1 --ease-in 1 --tolerance 1e-6); return 0 ;;
+            margs=(--method elastic --blend 1 --ease-in 1 --tolerance 1e-6 --max-iterations 30)
+            return 0 ;;
         elastic-converged)
             [[ $has_elastic == 1 ]] || return 1
             local extra
