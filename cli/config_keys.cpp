@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <limits>
+#include <optional>
 
 namespace skinslide::cli {
 namespace {
@@ -87,6 +88,39 @@ std::string full_name(const ConfigKey& key) {
   return name + key.name;
 }
 
+// The --config file as the checks after a parse read it: its keys with their lines, and CLI11's
+// items (none when no file was given, or it cannot be read: CLI11 names that fault).
+struct ConfigFile {
+  std::string path;
+  std::vector<ConfigKey> keys;
+  std::vector<CLI::ConfigItem> items;
+};
+
+std::optional<ConfigFile> read_config_file(const CLI::App& app) {
+  const CLI::Option* config = app.get_config_ptr();
+  if (config == nullptr || config->count() == 0) return std::nullopt;
+  ConfigFile file{config->results().front(), {}, {}};
+  std::ifstream in(file.path);
+  if (!in) return std::nullopt;
+  file.keys = config_keys(in);
+  try {
+    file.items = app.get_config_formatter()->from_file(file.path);
+  } catch (const CLI::Error&) {
+    return std::nullopt;  // the parse named it
+  }
+  return file;
+}
+
+// Refuses the value of the file's top-level key `name`: "<file>:<line>: key '<name>': <fault>".
+[[noreturn]] void refuse_key(const ConfigFile& file, const std::string& name,
+                             const std::string& fault) {
+  long line = 0;
+  for (const ConfigKey& key : file.keys)
+    if (key.name == name && key.parents.empty()) line = key.line;
+  throw CLI::ConfigError(file.path + (line > 0 ? ":" + std::to_string(line) : std::string()) +
+                         ": key '" + name + "': " + fault);
+}
+
 }  // namespace
 
 std::vector<ConfigKey> config_keys(std::istream& in) {
@@ -148,16 +182,9 @@ void check_config_keys(const CLI::App& app) {
 }
 
 void check_config_flags(const CLI::App& app) {
-  const CLI::Option* config = app.get_config_ptr();
-  if (config == nullptr || config->count() == 0) return;
-  const std::string path = config->results().front();
-  std::vector<CLI::ConfigItem> items;
-  try {
-    items = app.get_config_formatter()->from_file(path);
-  } catch (const CLI::Error&) {
-    return;  // the parse named it
-  }
-  for (const CLI::ConfigItem& item : items) {
+  const std::optional<ConfigFile> file = read_config_file(app);
+  if (!file) return;
+  for (const CLI::ConfigItem& item : file->items) {
     const CLI::Option* option = option_of(app, item.parents, item.name);
     if (option == nullptr || option->get_expected_min() != 0 || item.inputs.size() != 1) continue;
     const std::string& value = item.inputs.front();
@@ -165,43 +192,25 @@ void check_config_flags(const CLI::App& app) {
     // A flag on the command line wins over the file's (which is then not read), as for values;
     // CLI11 holds the file's value as given, an empty one as "true".
     if (option->results() != std::vector{option->get_flag_value(item.name, value)}) continue;
-    std::ifstream in(path);
-    long line = 0;
-    for (const ConfigKey& key : config_keys(in))
-      if (key.name == item.name && key.parents.empty()) line = key.line;
-    throw CLI::ConfigError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) +
-                           ": key '" + item.name + "': " + option->get_name() +
-                           (value.empty() ? " has an empty value" : " = " + value) +
-                           ": a flag takes true or false (or on/off, yes/no, 1/0, "
-                           "enable/disable), or the key alone for true");
+    refuse_key(*file, item.name,
+               option->get_name() + (value.empty() ? " has an empty value" : " = " + value) +
+                   ": a flag takes true or false (or on/off, yes/no, 1/0, enable/disable), or "
+                   "the key alone for true");
   }
 }
 
 void name_config_value(const CLI::App& app, const CLI::ParseError& error) {
-  const CLI::Option* config = app.get_config_ptr();
-  if (config == nullptr || config->count() == 0 || error.get_exit_code() == 0) return;
-  const std::string path = config->results().front();
-  std::ifstream in(path);
-  if (!in) return;
-  const std::vector<ConfigKey> keys = config_keys(in);
-  std::vector<CLI::ConfigItem> items;
-  try {
-    items = app.get_config_formatter()->from_file(path);
-  } catch (const CLI::Error&) {
-    return;
-  }
+  if (error.get_exit_code() == 0) return;
+  const std::optional<ConfigFile> file = read_config_file(app);
+  if (!file) return;
   const std::string message = error.what();
-  for (const CLI::ConfigItem& item : items) {
+  for (const CLI::ConfigItem& item : file->items) {
     const CLI::Option* option = option_of(app, item.parents, item.name);
     if (option == nullptr || !is_about(message, *option)) continue;
     // A value on the command line wins over the file's (which is then not read): the file is
     // named only when the option holds the file's value, or none (refused as it was read).
     if (!option->results().empty() && option->results() != item.inputs) return;
-    long line = 0;
-    for (const ConfigKey& key : keys)
-      if (key.name == item.name && key.parents.empty()) line = key.line;
-    throw CLI::ConfigError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) +
-                           ": key '" + item.name + "': " + message);
+    refuse_key(*file, item.name, message);
   }
 }
 
