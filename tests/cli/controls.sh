@@ -242,7 +242,9 @@ TOML
 check "config file values apply (default method)" $py -c "
 import json; r = json.load(open('$tmp/cfg_e.json'))
 assert r['options']['method'] == 'elastic' and r['options']['max_iterations'] == 5
-assert max(f['patches'][0]['iterations'] for f in r['frames']) <= 5 * r['options']['rotation_fits']"
+# lib/elastic/README.md rule 10: an escalated pass runs the rounds again
+assert all(p['iterations'] <= (1 + p['escalations']) * 5 * r['options']['rotation_fits']
+           for f in r['frames'] for p in f['patches'])"
 printf 'density = "paper"\n' >"$tmp/density.toml"
 check "a paper option in a config file is refused with the default method (2)" \
   fails_with 2 "--density: applies to --method paper only" --config "$tmp/density.toml" "${elbow[@]}" -o "$tmp/e00"

@@ -336,5 +336,30 @@ TEST(ElasticRelax, AFrameShortOfStationaryIsRelaxedAgainWithALargerBudget) {
   EXPECT_LE(smooth.solver_iterations, 8 * smooth.solves);
 }
 
+// A round that ran to --max-iterations with its directions unsolved is escalated as a stall is:
+// its steps were too short to count however many it took.
+TEST(ElasticRelax, ARoundAtItsStepLimitWithUnsolvedDirectionsIsRelaxedAgain) {
+  const int n = 64;
+  const PolyMesh mesh = test::quad_grid(n, n);
+  const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
+  const ElasticSetup& e = *test::elastic(setup).patches[0];
+  ElasticOptions capped;
+  capped.convergence = 0.0;
+  capped.tolerance = 0.0;
+  capped.max_iterations = 2;
+  const ElasticResult rough = relax_patch(e, on_a_ball(mesh, setup.patches[0], n, 0.4), capped);
+  EXPECT_EQ(rough.stop, ElasticStop::IterationLimit);
+  EXPECT_GE(rough.escalations, 1);
+  EXPECT_GT(rough.solver_iterations, 8 * rough.solves);
+  EXPECT_LE(rough.iterations,
+            (1 + rough.escalations) * capped.rotation_fits * capped.max_iterations);
+
+  // The smooth ball's directions are nearly solved at 8: its limit stop stays as it is.
+  const ElasticResult smooth = relax_patch(e, on_a_ball(mesh, setup.patches[0], n, 0.0), capped);
+  EXPECT_EQ(smooth.stop, ElasticStop::IterationLimit);
+  EXPECT_EQ(smooth.escalations, 0);
+  EXPECT_LE(smooth.solver_iterations, 8 * smooth.solves);
+}
+
 }  // namespace
 }  // namespace skinslide
