@@ -77,21 +77,18 @@ class Relaxation {
     return *middle > kUnsolvedResidual;
   }
 
-  // ARAP's local step: the rotations nearest the slid patch, held for the round.
-  void fit_rotations() {
+  // ARAP's local step: the rotations nearest the slid patch, held for the round. Rule 6's eased
+  // round (ElasticOptions::ease_in) aims `share` of the way from the frame's own deformation
+  // gradients to s R.
+  void fit_rotations(double share = 1) {
     R_ = fitted_rotations(mesh_, state_.x, surface_.normals);
-    E_ = held_rotation_energy(mesh_, state_.x, s_, R_, &g_);
-  }
-
-  // Rule 6's eased round (ElasticOptions::ease_in): the held targets moved back towards the
-  // frame's own deformation gradients, `share` of the way from them to s R.
-  void ease_targets(double share) {
-    for (Index t = 0; t < mesh_.count; ++t) {
-      const Eigen::Matrix2d& D = mesh_.rest_inverse[t];
-      if (!has_rest_shape(D)) continue;
-      const Mat32 own = deformation_gradient(surface_.frame, mesh_.triangles[t], D);
-      R_[t] = (1 - share) * own / s_ + share * R_[t];
-    }
+    if (share < 1)
+      for (Index t = 0; t < mesh_.count; ++t) {
+        const Eigen::Matrix2d& D = mesh_.rest_inverse[t];
+        if (!has_rest_shape(D)) continue;
+        const Mat32 own = deformation_gradient(surface_.frame, mesh_.triangles[t], D);
+        R_[t] = (1 - share) * own / s_ + share * R_[t];
+      }
     E_ = held_rotation_energy(mesh_, state_.x, s_, R_, &g_);
   }
 
@@ -249,9 +246,8 @@ ElasticStop relax_pass(Relaxation& relaxation, const ElasticOptions& options, bo
                        ElasticResult& result) {
   ElasticStop last_round = ElasticStop::SmallGain;
   for (int round = 0; round < options.rotation_fits; ++round) {
-    relaxation.fit_rotations();
-    if (from_frame && round < options.ease_in)
-      relaxation.ease_targets((round + 1.0) / (options.ease_in + 1.0));
+    const bool eased = from_frame && round < options.ease_in;
+    relaxation.fit_rotations(eased ? (round + 1.0) / (options.ease_in + 1.0) : 1.0);
     const double E_round = relaxation.energy();
     int it = 0;
     last_round = ElasticStop::IterationLimit;
