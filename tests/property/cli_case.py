@@ -621,8 +621,12 @@ def unconverged_problems(case, stderr):
     # A glTF frame that welds differently is refused when read (its own exit 3, beside the
     # others' 5 under --keep-going): its line names no patch.
     refused = [f.name for f in _selected_frames(case) if getattr(f, "weld_changed", False)]
+    # A broken frame file is refused when read too (exit 3 under --keep-going, after an earlier
+    # frame's 5): its line names the file and the line, no patch.
+    broken = [f.name for f in _selected_frames(case) if f.bad]
     lines = [ln for ln in errors if "samples failed, and a cache cannot have holes" not in ln
-             and not any(f"{n}: has " in ln for n in refused)]
+             and not any(f"{n}: has " in ln for n in refused)
+             and not any(n in ln for n in broken)]
     if not lines:
         # process_failures says so when nothing is said at all
         return [f"a cache refused with no sample named: {errors[0]!r}"] if errors else []
