@@ -139,6 +139,11 @@ double edge_ramp(const BlendEdges& e, int k, const Vec2& u, bool own, double* sl
     if (slope) *slope = 0;
     return 0.0;
   }
+  // Inside the band's inner line the ramp is 1 (the quotient would be >= 1), without a division.
+  if (h >= w) {
+    if (slope) *slope = 0;
+    return 1.0;
+  }
   const double s = (h + w) / (2 * w);
   if (slope) *slope = ramp_slope(s) / (2 * w);
   return ramp(s);
