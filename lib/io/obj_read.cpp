@@ -99,6 +99,13 @@ bool overflows(std::string_view t) {
 // A face corner is v, v/vt, v//vn or v/vt/vn: at most two slashes.
 constexpr std::ptrdiff_t kMaxCornerSlashes = 2;
 
+// Whether `text` is a whole number as written (a sign, then digits): one parse_integer refuses
+// only when it is beyond a long long.
+bool whole_number_text(std::string_view text) {
+  const std::string_view digits = text.substr(!text.empty() && (text[0] == '+' || text[0] == '-'));
+  return !digits.empty() && digits.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
 // A corner's texture and normal parts (after its first and second '/'): each empty (`1//3`), or a
 // whole number but 0, negative = relative. They are not read (vt and vn lines are kept as text),
 // so they need not name an existing vt or vn; but a part that is no index (`1/x/1`, `1/0.5`) is
@@ -117,10 +124,8 @@ void check_corner_parts(std::string_view entry, Fail&& fail) {
     if (idx && *idx != 0) continue;
     const std::string what = "face corner " + quoted(entry) + ": " + part_name + " index ";
     if (idx) fail(what + "0 (OBJ indices start at 1)");
-    const std::string_view digits = part.substr(part[0] == '+' || part[0] == '-' ? 1 : 0);
-    const bool too_large =
-        !digits.empty() && digits.find_first_not_of("0123456789") == std::string_view::npos;
-    fail(what + quoted(part) + (too_large ? " is too large" : " is not a whole number") +
+    fail(what + quoted(part) +
+         (whole_number_text(part) ? " is too large" : " is not a whole number") +
          " (a corner is v, v/vt, v//vn or v/vt/vn, each a whole number)");
   }
 }
@@ -214,6 +219,12 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
                " has more than 3 parts; a corner is v, v/vt, v//vn or v/vt/vn");
         const std::string_view first = entry.substr(0, entry.find('/'));
         const auto idx = parse_integer(first);
+        if (!idx && whole_number_text(first))
+          throw_input(path, line,
+                      first[0] == '-'
+                          ? "relative face index " + quoted(first) + " reaches before vertex 1 (" +
+                                std::to_string(nv) + " vertices defined so far)"
+                          : "face index " + quoted(first) + " is too large");
         if (!idx) fail("face entry " + quoted(entry) + " is not a vertex index");
         check_corner_parts(entry, fail);
         long long v = *idx;

@@ -168,6 +168,10 @@ variant repeat.obj '20s/.*/f 3 4 8 4/'
 expect obj_face_repeats_vertex 3 "repeat.obj:20: face uses vertex 4 twice (degenerate face)" --patch $P "$tmp/repeat.obj" $F
 variant word.obj '20s/.*/f 3 4 eight 7/'
 expect obj_face_entry_not_index 3 "word.obj:20: face entry 'eight' is not a vertex index" --patch $P "$tmp/word.obj" $F
+variant vast_index.obj '20s/.*/f 3 4 99999999999999999999 7/'
+expect obj_face_index_beyond_an_integer 3 "vast_index.obj:20: face index '99999999999999999999' is too large" --patch $P "$tmp/vast_index.obj" $F
+variant vast_relative.obj '20s/.*/f 3 4 -99999999999999999999 7/'
+expect obj_relative_index_beyond_an_integer 3 "vast_relative.obj:20: relative face index '-99999999999999999999' reaches before vertex 1" --patch $P "$tmp/vast_relative.obj" $F
 variant corner.obj '20s|.*|f 3 4/1/1/1 8 7|'
 expect obj_face_corner_four_parts 3 "corner.obj:20: face corner '4/1/1/1' has more than 3 parts" --patch $P "$tmp/corner.obj" $F
 # A corner's texture and normal parts are not read, but each is empty or a whole number.

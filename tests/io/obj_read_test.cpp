@@ -82,6 +82,12 @@ TEST(ObjRead, RejectsBadInputWithFileAndLine) {
   EXPECT_EQ(error_of(std::string("v 0 0 0\n\x01\x00\x02", 11)),
             "t.obj:2: binary data (NUL byte): not a text OBJ file");
   EXPECT_EQ(error_of("v 0 0 0\nf 1 a 3\n"), "t.obj:2: face entry 'a' is not a vertex index");
+  // A whole number beyond a long long is an index out of range, not a word.
+  EXPECT_EQ(error_of("v 0 0 0\nf 1 99999999999999999999 3\n"),
+            "t.obj:2: face index '99999999999999999999' is too large");
+  EXPECT_EQ(error_of("v 0 0 0\nf 1 -99999999999999999999/1 3\n"),
+            "t.obj:2: relative face index '-99999999999999999999' reaches before vertex 1 (1 "
+            "vertices defined so far)");
 }
 
 // After x y z a vertex line may hold a w or a colour r g b [a]: numbers, at most 4 of them.
