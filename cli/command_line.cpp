@@ -202,7 +202,6 @@ void add_run(CLI::App& app, CliOptions& o) {
       ->group(run);
   app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run);
   app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run);
-  app.get_option("--quiet")->excludes("--verbose");
   app.set_config("--config", "",
                  "Read options from a TOML or INI file (`density = \"paper\"`); "
                  "the command line overrides it")
@@ -303,6 +302,8 @@ void parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
 
 void check_options(const CLI::App& app, CliOptions& o) {
   o.has_rig = app.count("--animation") > 0;
+  // On, not given: `quiet = false` in a config file beside -v is no conflict.
+  if (o.quiet && o.verbose) throw CLI::ExcludesError("--quiet", "--verbose");
   // Options of one method only are refused with the other, naming both.
   const std::string& method = o.words.at(method_option().name);
   for (const auto& [option, only] : o.method_only)

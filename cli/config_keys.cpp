@@ -82,6 +82,15 @@ bool is_documented_boolean(std::string value) {
   return false;
 }
 
+// What is wrong with a flag key's `value`, which is none of the documented boolean forms.
+std::string flag_fault(const CLI::Option& option, const std::string& value) {
+  return option.get_name() + (value.empty() ? " has an empty value" : " = " + value) +
+         ": a flag takes true or false (or on/off, yes/no, 1/0, enable/disable), or the key "
+         "alone for true";
+}
+
+bool is_flag(const CLI::Option& option) { return option.get_expected_min() == 0; }
+
 std::string full_name(const ConfigKey& key) {
   std::string name;
   for (const std::string& parent : key.parents) name += parent + ".";
@@ -186,16 +195,13 @@ void check_config_flags(const CLI::App& app) {
   if (!file) return;
   for (const CLI::ConfigItem& item : file->items) {
     const CLI::Option* option = option_of(app, item.parents, item.name);
-    if (option == nullptr || option->get_expected_min() != 0 || item.inputs.size() != 1) continue;
+    if (option == nullptr || !is_flag(*option) || item.inputs.size() != 1) continue;
     const std::string& value = item.inputs.front();
     if (is_documented_boolean(value)) continue;
     // A flag on the command line wins over the file's (which is then not read), as for values;
     // CLI11 holds the file's value as given, an empty one as "true".
     if (option->results() != std::vector{option->get_flag_value(item.name, value)}) continue;
-    refuse_key(*file, item.name,
-               option->get_name() + (value.empty() ? " has an empty value" : " = " + value) +
-                   ": a flag takes true or false (or on/off, yes/no, 1/0, enable/disable), or "
-                   "the key alone for true");
+    refuse_key(*file, item.name, flag_fault(*option, value));
   }
 }
 
@@ -210,6 +216,9 @@ void name_config_value(const CLI::App& app, const CLI::ParseError& error) {
     // A value on the command line wins over the file's (which is then not read): the file is
     // named only when the option holds the file's value, or none (refused as it was read).
     if (!option->results().empty() && option->results() != item.inputs) return;
+    // A flag's value CLI11 could not convert (`keep-going = maybe`): the flag's own wording.
+    if (is_flag(*option) && item.inputs.size() == 1 && !is_documented_boolean(item.inputs.front()))
+      refuse_key(*file, item.name, flag_fault(*option, item.inputs.front()));
     refuse_key(*file, item.name, message);
   }
 }

@@ -613,7 +613,7 @@ expect config_value_out_of_range 2 "range.toml:2: key 'tolerance': --tolerance: 
 printf 'patch = ["all.txt"]\n# farm\nthreads = "two"\n' >"$tmp/type.toml"
 expect config_value_wrong_type 2 "type.toml:3: key 'threads': --threads: Value two not in range 0 to 1024" --config "$tmp/type.toml" $B $F
 printf 'patch = ["all.txt"]\nkeep-going = "maybe"\n' >"$tmp/flag.toml"
-expect config_flag_not_a_boolean 2 "flag.toml:2: key 'keep-going': Could not convert: --keep-going = maybe" --config "$tmp/flag.toml" $B $F
+expect config_flag_not_a_boolean 2 "flag.toml:2: key 'keep-going': --keep-going = maybe: a flag takes true or false (or on/off, yes/no, 1/0, enable/disable), or the key alone for true" --config "$tmp/flag.toml" $B $F
 # A flag takes true/false (on/off, yes/no, 1/0, enable/disable) or its key alone; CLI11 read any
 # other number as on (5) or off (-1), and an empty value as on. A flag given on the command line
 # wins, and the file's value is not read.
@@ -626,6 +626,12 @@ expect config_flag_empty_value 2 "flag_empty.toml:2: key 'no-slide': --no-slide 
 printf 'patch = ["all.txt"]\nkeep-going = Yes\nquiet = "false"\nrequire-converged = 0\nbind-is-frame = OFF\n' >"$tmp/flag_words.toml"
 expect config_flag_documented_forms_valid 0 "1 frames slid" --config "$tmp/flag_words.toml" $B $F
 expect config_flag_overridden_valid 0 "1 frames slid" --keep-going --config "$tmp/flag5.toml" $B $F
+# --quiet and --verbose exclude each other when both are on; a flag set off is no conflict.
+printf 'patch = ["all.txt"]\nquiet = false\n' >"$tmp/quiet_off.toml"
+expect config_quiet_off_beside_verbose_valid 0 "1 frames slid" -v --config "$tmp/quiet_off.toml" $B $F
+printf 'patch = ["all.txt"]\nquiet = true\nverbose = true\n' >"$tmp/quiet_verbose.toml"
+expect config_quiet_and_verbose 2 "--quiet excludes --verbose" --config "$tmp/quiet_verbose.toml" $B $F
+expect quiet_and_verbose 2 "--quiet excludes --verbose" -q -v --patch $P $B $F
 # CLI11's ranges let NaN through; bands narrower than round-off read as converged: refused.
 expect option_nan 2 "--convergence: Value nan is not a number" --convergence nan --patch $P $B $F
 expect option_nan_blend 2 "--blend: Value NaN is not a number" --blend NaN --patch $P $B $F
