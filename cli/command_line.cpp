@@ -81,23 +81,23 @@ void add_inputs(CLI::App& app, CliOptions& o) {
       ->allow_extra_args(false)
       ->type_name("DIR")
       ->group(gl);
-  auto* anim = app.add_option("--animation", o.rig.animation,
-                              "BIND is an animated glTF character (skin and/or morph targets): "
-                              "pose it at each sampled time of this clip (name, else index) and "
-                              "slide those frames")
-                   ->type_name("NAME|INDEX")
-                   ->excludes(frames)
-                   ->group(gl);
-  auto* fps = app.add_option("--fps", o.rig.fps,
-                             "Sample the clip every 1/N s from its first key to its last; with "
-                             "FRAME files and --format mdd, their rate (frame n at n/N s)")
-                  ->check(a_number())
-                  ->check(CLI::Range(0.001, 100000.0))
-                  ->type_name("N")
-                  ->group(gl);
-  app.add_flag("--keyframes", o.keyframes, "Sample the clip at its key times (the default)")
-      ->needs(anim)
-      ->excludes(fps)
+  app.add_option("--animation", o.rig.animation,
+                 "BIND is an animated glTF character (skin and/or morph targets): "
+                 "pose it at each sampled time of this clip (name, else index) and "
+                 "slide those frames")
+      ->type_name("NAME|INDEX")
+      ->excludes(frames)
+      ->group(gl);
+  app.add_option("--fps", o.rig.fps,
+                 "Sample the clip every 1/N s from its first key to its last; with "
+                 "FRAME files and --format mdd, their rate (frame n at n/N s)")
+      ->check(a_number())
+      ->check(CLI::Range(0.001, 100000.0))
+      ->type_name("N")
+      ->group(gl);
+  // Needs --animation and excludes --fps when on: check_flag_conflicts.
+  app.add_flag("--keyframes", o.keyframes,
+               "Sample the clip at its key times (the default; with --animation, not with --fps)")
       ->group(gl);
   app.add_option("--format", o.run.format,
                  "Format of the slid frames of --animation (default glb; frames "
@@ -257,16 +257,35 @@ void add_controls(CLI::App& app, CliOptions& o) {
       ->allow_extra_args(false)
       ->check(CLI::Range(0, 2147483647))
       ->group(controls);
-  auto* report = app.add_option("--report", o.run.report,
-                                "Write a JSON report: per frame and patch the method's figures "
-                                "(elastic: energy, steps; paper: CG, location), slide and "
-                                "edge-spread figures, totals and timings")
-                     ->type_name("FILE.json")
-                     ->group(controls);
-  app.add_flag("--report-no-timings", o.report_no_timings,
-               "Leave the timings out of the report (it then depends on the inputs only)")
-      ->needs(report)
+  app.add_option("--report", o.run.report,
+                 "Write a JSON report: per frame and patch the method's figures "
+                 "(elastic: energy, steps; paper: CG, location), slide and "
+                 "edge-spread figures, totals and timings")
+      ->type_name("FILE.json")
       ->group(controls);
+  // Needs --report when on: check_flag_conflicts.
+  app.add_flag("--report-no-timings", o.report_no_timings,
+               "Leave the timings out of the --report (it then depends on the inputs only)")
+      ->group(controls);
+}
+
+// Whether option `name` was given and, a flag, given on: CLI11's excludes() and needs() count a
+// flag given off (`--quiet=false`, `quiet = false` in a --config file) as given.
+bool is_on(const CLI::App& app, const std::string& name) {
+  const CLI::Option* option = app.get_option(name);
+  return option->count() > 0 && (option->get_expected_min() != 0 || option->as<bool>());
+}
+
+// The flags' conflicts, by value, in CLI11's words.
+void check_flag_conflicts(const CLI::App& app) {
+  if (is_on(app, "--keyframes") && !is_on(app, "--animation"))
+    throw CLI::RequiresError("--keyframes", "--animation");
+  if (is_on(app, "--keyframes") && is_on(app, "--fps"))
+    throw CLI::ExcludesError("--keyframes", "--fps");
+  if (is_on(app, "--quiet") && is_on(app, "--verbose"))
+    throw CLI::ExcludesError("--quiet", "--verbose");
+  if (is_on(app, "--report-no-timings") && !is_on(app, "--report"))
+    throw CLI::RequiresError("--report-no-timings", "--report");
 }
 
 }  // namespace
@@ -302,8 +321,7 @@ void parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
 
 void check_options(const CLI::App& app, CliOptions& o) {
   o.has_rig = app.count("--animation") > 0;
-  // On, not given: `quiet = false` in a config file beside -v is no conflict.
-  if (o.quiet && o.verbose) throw CLI::ExcludesError("--quiet", "--verbose");
+  check_flag_conflicts(app);
   // Options of one method only are refused with the other, naming both.
   const std::string& method = o.words.at(method_option().name);
   for (const auto& [option, only] : o.method_only)
