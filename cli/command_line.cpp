@@ -200,8 +200,8 @@ void add_run(CLI::App& app, CliOptions& o) {
                "Read, check and write every frame unchanged, without sliding (no --patch needed): "
                "the I/O floor of a run, or a sequence converted into a cache (--format pc2)")
       ->group(run);
-  app.add_flag("-q,--quiet", o.quiet, "Errors only")->group(run);
-  app.add_flag("-v,--verbose", o.verbose, "Per-patch detail")->group(run);
+  app.add_flag("-q,--quiet", o.quiet, "Errors only (not with --verbose)")->group(run);
+  app.add_flag("-v,--verbose", o.verbose, "Per-patch detail (not with --quiet)")->group(run);
   app.set_config("--config", "",
                  "Read options from a TOML or INI file (`density = \"paper\"`); "
                  "the command line overrides it")
