@@ -219,29 +219,29 @@ ObjMesh parse_obj(const std::string& path, std::string bytes) {
                " has more than 3 parts; a corner is v, v/vt, v//vn or v/vt/vn");
         const std::string_view first = entry.substr(0, entry.find('/'));
         const auto idx = parse_integer(first);
-        if (!idx && whole_number_text(first))
+        // An index out of range as written, or beyond a long long (quoted then).
+        const auto before_first = [&](const std::string& index) {
           throw_input(path, line,
-                      first[0] == '-'
-                          ? "relative face index " + quoted(first) + " reaches before vertex 1 (" +
-                                std::to_string(nv) + " vertices defined so far)"
-                          : "face index " + quoted(first) + " is too large");
+                      "relative face index " + index + " reaches before vertex 1 (" +
+                          std::to_string(nv) + " vertices defined so far)");
+        };
+        const auto too_large = [&](const std::string& index) {
+          throw_input(path, line, "face index " + index + " is too large");
+        };
+        if (!idx && whole_number_text(first))
+          first[0] == '-' ? before_first(quoted(first)) : too_large(quoted(first));
         if (!idx) fail("face entry " + quoted(entry) + " is not a vertex index");
         check_corner_parts(entry, fail);
         long long v = *idx;
         if (v == 0) throw_input(path, line, "face index 0 (OBJ indices start at 1)");
         if (v < 0) {
           v = nv + v;
-          if (v < 0)
-            throw_input(path, line,
-                        "relative face index " + std::to_string(*idx) +
-                            " reaches before vertex 1 (" + std::to_string(nv) +
-                            " vertices defined so far)");
+          if (v < 0) before_first(std::to_string(*idx));
         } else {
           if (v > nv) forward_refs.emplace_back(line, v);
           v -= 1;
         }
-        if (v > 0x7fffffffLL)
-          throw_input(path, line, "face index " + std::to_string(*idx) + " is too large");
+        if (v > 0x7fffffffLL) too_large(std::to_string(*idx));
         face.push_back(static_cast<Index>(v));
       }
       Index dup = 0;
