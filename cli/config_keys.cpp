@@ -64,12 +64,17 @@ bool names_an_option(const CLI::App& app, const ConfigKey& key) {
   return option_of(app, key.parents, key.name) != nullptr;
 }
 
-// Whether CLI11's message is about `option`: "--name: what" (a check), or "Could not convert:
-// --name = value" (a flag's value).
+// Whether CLI11's message is about `option`: "--name: what" (a check), "Could not convert:
+// --name = value" (a flag's value), or either side of a conflict, "--a excludes --b" or
+// "--a requires --b" (CLI11's words, which check_options uses for the flags' conflicts too).
 bool is_about(const std::string& message, const CLI::Option& option) {
   const std::string name = option.get_name();
+  const std::string excluded = " excludes " + name;
   return message.rfind(name + ":", 0) == 0 ||
-         message.rfind("Could not convert: " + name + " ", 0) == 0;
+         message.rfind("Could not convert: " + name + " ", 0) == 0 ||
+         message.rfind(name + " excludes ", 0) == 0 || message.rfind(name + " requires ", 0) == 0 ||
+         (message.size() > excluded.size() &&
+          message.compare(message.size() - excluded.size(), excluded.size(), excluded) == 0);
 }
 
 // The boolean forms CLI11's documentation gives for a config file (README, "Configuration file"),
@@ -214,8 +219,10 @@ void name_config_value(const CLI::App& app, const CLI::ParseError& error) {
     const CLI::Option* option = option_of(app, item.parents, item.name);
     if (option == nullptr || !is_about(message, *option)) continue;
     // A value on the command line wins over the file's (which is then not read): the file is
-    // named only when the option holds the file's value, or none (refused as it was read).
-    if (!option->results().empty() && option->results() != item.inputs) return;
+    // named only when the option holds the file's value, or none (refused as it was read). Of
+    // two options in conflict, the first the file sets is named (`-q` given, `verbose = true`
+    // in the file: verbose).
+    if (!option->results().empty() && option->results() != item.inputs) continue;
     // A flag's value CLI11 could not convert (`keep-going = maybe`): the flag's own wording.
     if (is_flag(*option) && item.inputs.size() == 1 && !is_documented_boolean(item.inputs.front()))
       refuse_key(*file, item.name, flag_fault(*option, item.inputs.front()));

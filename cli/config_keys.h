@@ -39,7 +39,8 @@ void check_config_flags(const CLI::App& app);
 
 /// After a parse or a check of the options failed with `error`: when the value refused is a
 /// --config file's (the option holds that file's value, or was refused as the file was read),
-/// throws the same message naming the file, the key's line and the key.
+/// throws the same message naming the file, the key's line and the key; of two options in
+/// conflict ("--quiet excludes --verbose"), the first key of the file that holds its value.
 /// \throw CLI::ConfigError "<file>:<line>: key '<key>': <error's message>"; returns otherwise.
 void name_config_value(const CLI::App& app, const CLI::ParseError& error);
 

@@ -630,13 +630,18 @@ expect config_flag_overridden_valid 0 "1 frames slid" --keep-going --config "$tm
 printf 'patch = ["all.txt"]\nquiet = false\n' >"$tmp/quiet_off.toml"
 expect config_quiet_off_beside_verbose_valid 0 "1 frames slid" -v --config "$tmp/quiet_off.toml" $B $F
 printf 'patch = ["all.txt"]\nquiet = true\nverbose = true\n' >"$tmp/quiet_verbose.toml"
-expect config_quiet_and_verbose 2 "--quiet excludes --verbose" --config "$tmp/quiet_verbose.toml" $B $F
+# A conflict the file has a part in names its key and line (the first such key of the file).
+expect config_quiet_and_verbose 2 "quiet_verbose.toml:2: key 'quiet': --quiet excludes --verbose" --config "$tmp/quiet_verbose.toml" $B $F
+printf 'patch = ["all.txt"]\n# shot\nverbose = true\n' >"$tmp/verbose.toml"
+expect config_verbose_beside_quiet 2 "verbose.toml:3: key 'verbose': --quiet excludes --verbose" -q --config "$tmp/verbose.toml" $B $F
 expect quiet_and_verbose 2 "--quiet excludes --verbose" -q -v --patch $P $B $F
 # The same for the flags that need another option: off, they need nothing.
 printf 'patch = ["all.txt"]\nkeyframes = false\nreport-no-timings = off\n' >"$tmp/flags_off.toml"
 expect config_flags_off_need_nothing_valid 0 "1 frames slid" --config "$tmp/flags_off.toml" $B $F
 expect report_no_timings_off_valid 0 "1 frames slid" --report-no-timings=false --patch $P $B $F
 expect keyframes_without_animation 2 "--keyframes requires --animation" --keyframes --patch $P $B $F
+printf 'patch = ["all.txt"]\nreport-no-timings = on\n' >"$tmp/no_timings.toml"
+expect config_report_no_timings_without_report 2 "no_timings.toml:2: key 'report-no-timings': --report-no-timings requires --report" --config "$tmp/no_timings.toml" $B $F
 # CLI11's ranges let NaN through; bands narrower than round-off read as converged: refused.
 expect option_nan 2 "--convergence: Value nan is not a number" --convergence nan --patch $P $B $F
 expect option_nan_blend 2 "--blend: Value NaN is not a number" --blend NaN --patch $P $B $F
