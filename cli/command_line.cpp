@@ -174,6 +174,21 @@ void add_method(CLI::App& app, CliOptions& o) {
   add_table_option(app, method_option(), o.run, o, method);
   add_method_options(app, o.elastic, o, method);
   add_method_options(app, o.paper, o, method);
+  // A run's option, not a frame's (pipeline/frame_window.h): not in the method's table, which the
+  // Python module's one-frame Slider takes too.
+  CLI::Option* window =
+      app.add_option("--window", o.run.window,
+                     "Elastic: write each frame's slide as the mean of its own and its N "
+                     "neighbours' on each side in the sequence given (frame numbers; in the "
+                     "chart, weights N+1-|k|): far less jitter in slow motion (4: jerk under 2). "
+                     "A frame then depends on its neighbours: give a farm chunk the whole "
+                     "sequence and its range with --frames")
+          ->type_name("N")
+          ->capture_default_str()
+          ->check(a_number())
+          ->check(CLI::Range(0, 100))
+          ->group(method);
+  o.method_only.push_back({window, method_name(ElasticOptions{})});
 }
 
 void add_run(CLI::App& app, CliOptions& o) {

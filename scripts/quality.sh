@@ -3,12 +3,13 @@
 # and what it costs in flipped triangles, surface error, border motion and popping.
 #
 # Usage: scripts/quality.sh [--cases a,b,...]
-#                           [--methods unslid,paper,elastic,elastic-blend,elastic-smooth[,elastic-converged][,prototype][,corrective-smooth]]
+#                           [--methods unslid,paper,elastic,elastic-blend,elastic-smooth,elastic-window[,elastic-converged][,prototype][,corrective-smooth]]
 #                           [--keep DIR]
 #
 #   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face,
 #              swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
-#   --methods  default: unslid,paper,elastic,elastic-blend,elastic-smooth,corrective-smooth
+#   --methods  default: unslid,paper,elastic,elastic-blend,elastic-smooth,elastic-window,
+#              corrective-smooth
 #              unslid    the frames as they are (the baseline; same measuring code path)
 #              paper     skinslide --method paper (a binary without --method: its default)
 #              elastic   skinslide --method elastic ("n/a" when the binary has no such method)
@@ -20,6 +21,11 @@
 #                        --max-iterations 30
 #                        (lib/elastic/README.md "Slow close-ups"; "n/a" when the binary has no
 #                        --ease-in)
+#              elastic-window
+#                        the default with --window 4: each frame written at the mean of its own
+#                        and its 4 neighbours' slides on each side (README "Slow motion"); n/a on
+#                        the cases that are not a motion (the ICT expressions, data/) and when the
+#                        binary has no --window
 #              elastic-converged
 #                        the same with $QUALITY_CONVERGED (default "--tolerance 1e-6
 #                        --max-iterations 1000 --rotation-fits 10"): the elastic energy solved
@@ -135,7 +141,7 @@ export QUALITY_REFERENCE=$REFDIR
 cases=ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
 cases+=,swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
 QUALITY_CONVERGED=${QUALITY_CONVERGED:---tolerance 1e-6 --max-iterations 1000 --rotation-fits 10}
-methods=unslid,paper,elastic,elastic-blend,elastic-smooth,corrective-smooth
+methods=unslid,paper,elastic,elastic-blend,elastic-smooth,elastic-window,corrective-smooth
 methods_given=0
 keep=
 while [[ $# -gt 0 ]]; do
@@ -157,7 +163,7 @@ for c in "${case_list[@]}"; do
         *) echo "quality.sh: unknown case $c" >&2; exit 2 ;; esac
 done
 for m in "${method_list[@]}"; do
-    case $m in unslid|paper|elastic|elastic-blend|elastic-smooth|elastic-converged|prototype|corrective-smooth) ;;
+    case $m in unslid|paper|elastic|elastic-blend|elastic-smooth|elastic-window|elastic-converged|prototype|corrective-smooth) ;;
         *) echo "quality.sh: unknown method $m" >&2; exit 2 ;; esac
 done
 
@@ -181,12 +187,13 @@ fi
 [[ -x $SKINSLIDE ]] || { echo "quality.sh: no binary at $SKINSLIDE" >&2; exit 1; }
 
 help_text=$("$SKINSLIDE" --help)
-has_method=0; has_elastic=0; has_blend=0; has_ease_in=0
+has_method=0; has_elastic=0; has_blend=0; has_ease_in=0; has_window=0
 if grep -q -- '--method' <<<"$help_text"; then
     has_method=1
     grep -q 'elastic' <<<"$help_text" && has_elastic=1
     grep -q -- '--blend' <<<"$help_text" && has_blend=1
     grep -q -- '--ease-in' <<<"$help_text" && has_ease_in=1
+    grep -q -- '--window' <<<"$help_text" && has_window=1
 fi
 
 # Blender for the corrective-smooth method: installed only when that method is asked for.
@@ -221,6 +228,8 @@ method_args() {
             [[ $has_ease_in == 1 ]] || return 1
             margs=(--method elastic --blend 1 --ease-in 1 --tolerance 1e-6 --max-iterations 30)
             return 0 ;;
+        elastic-window)
+            [[ $has_window == 1 ]] || return 1; margs=(--method elastic --window 4); return 0 ;;
         elastic-converged)
             [[ $has_elastic == 1 ]] || return 1
             local extra
@@ -281,6 +290,8 @@ run_obj_case() {
                 measure "$c" "$m" "$bind" "$patch" "$frames" "$dir" "$seq" "$(elapsed "$t0" "$t1")" ;;
             *)
                 if ! method_args "$m"; then na_row "$c" "$m"; continue; fi
+                # a window averages a motion's neighbouring frames: none in separate poses
+                if [[ $m == elastic-window && $seq == 0 ]]; then na_row "$c" "$m"; continue; fi
                 t0=$(now)
                 "$SKINSLIDE" -q "${margs[@]}" --patch "$patch" -o "$dir" "$bind" "${flist[@]}"
                 t1=$(now)

@@ -54,13 +54,15 @@ Figures report_figures(const ElasticReport& r) {
           {"first_order_gain", r.gain_left},
           {"first_order_share", first_order_share(r)},
           {"held", static_cast<long long>(r.held)},
-          {"flips", static_cast<long long>(r.slid_flips)}};
+          {"flips", static_cast<long long>(r.slid_flips)},
+          {"window_returned", static_cast<long long>(r.window_returned)}};
 }
 
 void ElasticTotals::add(const ElasticReport& r) {
   iterations += r.iterations;
   held += r.held;
   flips += r.slid_flips;
+  window_returned += r.window_returned;
   not_converged += converged(r) ? 0 : 1;
 }
 
@@ -68,6 +70,7 @@ Figures ElasticTotals::figures() const {
   return {{"iterations", iterations},
           {"held", held},
           {"flips", flips},
+          {"window_returned", window_returned},
           {"not_converged", not_converged}};
 }
 

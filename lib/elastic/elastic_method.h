@@ -39,7 +39,8 @@ std::string method_label(const ElasticMethod& method);
 Figures patch_figures(const ElasticMethod& method, std::size_t p, const Patch& patch);
 
 /// A patch's figures in one frame: energy_before, energy_after, iterations, solves,
-/// solve_iterations, stop, converged, first_order_gain, first_order_share, held, flips.
+/// solve_iterations, stop, converged, first_order_gain, first_order_share, held, flips,
+/// window_returned.
 Figures report_figures(const ElasticReport& report);
 
 /// The stop says the slid patch is stationary ("converged", "at rest"), or nothing slid (skipped).
@@ -51,9 +52,10 @@ double first_order_share(const ElasticReport& report);
 /// A patch's stop and its measure for the log: "small gain, first-order gain left 3.1%".
 std::string convergence_text(const ElasticReport& report);
 
-/// The report's sums over every patch of every frame: iterations, held, flips, not_converged.
+/// The report's sums over every patch of every frame: iterations, held, flips, window_returned,
+/// not_converged.
 struct ElasticTotals {
-  long long iterations = 0, held = 0, flips = 0;
+  long long iterations = 0, held = 0, flips = 0, window_returned = 0;
   long long not_converged = 0;  ///< patch-frames whose stop is not "converged" or "at rest"
   void add(const ElasticReport& report);
   Figures figures() const;

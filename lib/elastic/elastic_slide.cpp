@@ -65,12 +65,20 @@ std::shared_ptr<const ElasticSetup> elastic_patch_setup(Patch& patch, const Posi
 ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const Positions3& points,
                            const std::vector<double>& weight, const ElasticOptions& options,
                            int id_image_size) {
+  const auto t0 = Clock::now();
+  const ElasticResult relaxed = relax_patch(setup, points, options);
+  const double solve_seconds = seconds_since(t0);
+  ElasticSlide result = elastic_written(setup, patch, points, weight, relaxed, id_image_size);
+  result.slid.solve_seconds = solve_seconds;
+  return result;
+}
+
+ElasticSlide elastic_written(const ElasticSetup& setup, const Patch& patch,
+                             const Positions3& points, const std::vector<double>& weight,
+                             const ElasticResult& relaxed, int id_image_size) {
   ElasticSlide result;
   ElasticReport& report = result.report;
   PatchSlide& slid = result.slid;
-  auto t0 = Clock::now();
-  const ElasticResult relaxed = relax_patch(setup, points, options);
-  slid.solve_seconds = seconds_since(t0);
   report.energy_before = relaxed.energy_before;
   report.energy_after = relaxed.energy_after;
   report.iterations = relaxed.iterations;
@@ -79,6 +87,7 @@ ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const 
   report.escalations = relaxed.escalations;
   report.held = relaxed.held;
   report.gain_left = relaxed.gain_left;
+  report.window_returned = relaxed.window_returned;
   report.stop = stop_name(relaxed.stop);
   const Chart& chart = setup.chart;
   slid.net = patch.bind_net;

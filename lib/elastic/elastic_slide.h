@@ -39,7 +39,10 @@ struct ElasticReport {
   int held = 0;              ///< vertex-steps held in place to keep a step a descent
   int slid_flips = 0;        ///< slid triangles whose normal turns against the frame's (want 0)
   double gain_left = 0;      ///< the first-order gain left at the slid patch (relax.h, rule 10)
-  std::string stop;          ///< why the relaxation stopped; empty: the patch was skipped
+  /// With a window over the neighbouring frames (window_mean.h): vertices written at the frame's
+  /// own slide instead of the window's mean, to keep every slid triangle facing the frame's.
+  int window_returned = 0;
+  std::string stop;  ///< why the relaxation stopped; empty: the patch was skipped
 };
 
 struct ElasticSlide {
@@ -58,5 +61,11 @@ struct ElasticSlide {
 ElasticSlide elastic_slide(const ElasticSetup& setup, const Patch& patch, const Positions3& points,
                            const std::vector<double>& weight, const ElasticOptions& options,
                            int id_image_size = 0);
+
+/// elastic_slide's second half: writes a relaxation of this frame's patch (`relaxed`:
+/// relax_patch's, or window_mean's), with the slide weights applied as elastic_slide says.
+ElasticSlide elastic_written(const ElasticSetup& setup, const Patch& patch,
+                             const Positions3& points, const std::vector<double>& weight,
+                             const ElasticResult& relaxed, int id_image_size = 0);
 
 }  // namespace skinslide

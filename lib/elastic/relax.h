@@ -117,6 +117,8 @@ struct ElasticResult {
   /// Rule 10's measure (stationarity.h): the first-order gain left at the slid patch (at the
   /// frame when it is returned), in the energy's units.
   double gain_left = 0;
+  /// window_mean.h: vertices written at this frame's own relaxation instead of the window's mean.
+  int window_returned = 0;
   ElasticStop stop = ElasticStop::Converged;
 };
 

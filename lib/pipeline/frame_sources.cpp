@@ -26,12 +26,13 @@ std::pair<size_t, std::string> first_unconverged(const FrameResult& result) {
 // slide_frame, with the frame named in its errors; with --require-converged a patch that did
 // not converge fails the frame before anything of it is written.
 FrameResult slide_named(const BindSetup& setup, const RunOptions& o, const Positions3& positions,
-                        const std::string& name) {
+                        const std::string& name, const WindowedFrame* window) {
   FrameResult result;
   try {
-    result = slide_frame(setup, positions,
-                         {.id_image_size = o.dump_dir.empty() ? 0 : o.lookup_size,
-                          .edge_spread = !o.report.empty()});
+    result = slide_frame(
+        setup, positions,
+        {.id_image_size = o.dump_dir.empty() ? 0 : o.lookup_size, .edge_spread = !o.report.empty()},
+        window);
   } catch (const Error& e) {
     throw Error(e.kind(), name + ": " + e.what());
   }
@@ -80,20 +81,26 @@ void write_file_frame(const MeshFile& frame, const SlidVertices& slid, const std
   write_slid_mesh_file(frame, slid, out_path);
 }
 
-FrameOutcome run_frame(const BindSetup& setup, const MeshFile& bind, const RunOptions& o,
-                       const std::string& frame_path, const std::string& out_path, CacheSlot slot,
-                       ReportFrame* record) {
-  auto t0 = Clock::now();
+// A FRAME file read and checked against the bind.
+MeshFile read_frame_file(const MeshFile& bind, const RunOptions& o, const std::string& frame_path) {
   MeshFile frame = read_mesh_file(frame_path, mesh_read_options(o));
   require_same_topology(bind, frame);
   release_faces(frame);
+  return frame;
+}
+
+FrameOutcome run_frame(const BindSetup& setup, const MeshFile& bind, const RunOptions& o,
+                       const std::string& frame_path, const std::string& out_path, CacheSlot slot,
+                       ReportFrame* record, const WindowedFrame* window) {
+  auto t0 = Clock::now();
+  MeshFile frame = read_frame_file(bind, o, frame_path);
   const double read_seconds = seconds_since(t0);
   if (o.no_slide) {
     write_file_frame(frame, SlidVertices{}, out_path, slot);
     return {
         {{LogLevel::Info, "skinslide: " + frame_path + ": unchanged (--no-slide) -> " + out_path}}};
   }
-  FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path);
+  FrameResult result = slide_named(setup, o, frame.mesh.positions, frame_path, window);
   write_frame_pictures(setup, o, frame_path, frame.mesh.positions, result);
   t0 = Clock::now();
   write_file_frame(frame, result.slid, out_path, slot);
@@ -117,18 +124,22 @@ void write_cache_frame(const MeshFile& bind, const RunOptions& o, CacheSample fr
 }
 
 // Sample k of a point cache: read, slid and written (write_cache_frame).
+// Sample k of a point cache as its errors name it.
+std::string cache_label(const CacheFrames& cache, size_t k) {
+  return cache.cache->path() + " sample " + std::to_string(k) + " (" + cache.names[k] + ")";
+}
+
 FrameOutcome run_cache_frame(const BindSetup& setup, const MeshFile& bind, const CacheFrames& cache,
                              const RunOptions& o, size_t k, const std::string& out_path,
-                             CacheSlot slot, ReportFrame* record) {
-  const std::string label =
-      cache.cache->path() + " sample " + std::to_string(k) + " (" + cache.names[k] + ")";
+                             CacheSlot slot, ReportFrame* record, const WindowedFrame* window) {
+  const std::string label = cache_label(cache, k);
   auto t0 = Clock::now();
   CacheSample frame = cache.cache->sample(k);
   const Positions3 positions = sample_positions(frame);
   const double read_seconds = seconds_since(t0);
   FrameResult result;
   if (!o.no_slide) {
-    result = slide_named(setup, o, positions, label);
+    result = slide_named(setup, o, positions, label, window);
     write_frame_pictures(setup, o, cache.names[k] + ".cache", positions, result);
   }
   t0 = Clock::now();
@@ -139,14 +150,19 @@ FrameOutcome run_cache_frame(const BindSetup& setup, const MeshFile& bind, const
 }
 
 // Frame k of a rigged character's clip: posed, slid, written as OBJ or GLB, or into a cache.
+// Frame k of a clip as its errors name it.
+std::string rig_label(const RigClip& clip, size_t k) {
+  return clip.names[k] + " (t = " + log_number(clip.times[k]) + " s)";
+}
+
 FrameOutcome run_rig_frame(const BindSetup& setup, const MeshFile& character, const RigClip& clip,
                            const RunOptions& o, size_t k, const std::string& out_path,
-                           CacheSlot slot, ReportFrame* record) {
-  const std::string label = clip.names[k] + " (t = " + log_number(clip.times[k]) + " s)";
+                           CacheSlot slot, ReportFrame* record, const WindowedFrame* window) {
+  const std::string label = rig_label(clip, k);
   auto t0 = Clock::now();
   const MeshFile frame = rig_frame(character, clip, k);
   const double pose_seconds = seconds_since(t0);
-  FrameResult result = slide_named(setup, o, frame.mesh.positions, label);
+  FrameResult result = slide_named(setup, o, frame.mesh.positions, label, window);
   write_frame_pictures(setup, o, out_path, frame.mesh.positions, result);
   t0 = Clock::now();
   if (slot.writer)
@@ -202,12 +218,33 @@ const std::string& frame_label(const RunOptions& o, const FrameSource& source, s
 
 FrameOutcome run_source_frame(const BindSetup& setup, const MeshFile& bind,
                               const FrameSource& source, const RunOptions& o, size_t i,
-                              CacheSlot slot, ReportFrame* record) {
+                              CacheSlot slot, ReportFrame* record, const WindowedFrame* window) {
   const std::string& out = source.plan.outputs[i];
-  if (o.rig) return run_rig_frame(setup, bind, source.clip, o, i, out, slot, record);
+  if (o.rig) return run_rig_frame(setup, bind, source.clip, o, i, out, slot, record, window);
   if (source.cache.cache)
-    return run_cache_frame(setup, bind, source.cache, o, i, out, slot, record);
-  return run_frame(setup, bind, o, o.frames[i], out, slot, record);
+    return run_cache_frame(setup, bind, source.cache, o, i, out, slot, record, window);
+  return run_frame(setup, bind, o, o.frames[i], out, slot, record, window);
+}
+
+FrameRelaxations relax_source_frame(const BindSetup& setup, const MeshFile& bind,
+                                    const FrameSource& source, const RunOptions& o, size_t i) {
+  std::string label;
+  Positions3 positions;
+  if (o.rig) {
+    label = rig_label(source.clip, i);
+    positions = rig_frame(bind, source.clip, i).mesh.positions;
+  } else if (source.cache.cache) {
+    label = cache_label(source.cache, i);
+    positions = sample_positions(source.cache.cache->sample(i));
+  } else {
+    label = o.frames[i];
+    positions = read_frame_file(bind, o, label).mesh.positions;
+  }
+  try {
+    return relax_frame(setup, positions);
+  } catch (const Error& e) {
+    throw Error(e.kind(), label + ": " + e.what());
+  }
 }
 
 }  // namespace skinslide

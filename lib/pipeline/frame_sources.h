@@ -60,8 +60,15 @@ struct FrameOutcome {
 /// Frame i of the run: read (or posed), slid and written. With `record`, the report's record of
 /// it. \throw Error naming the frame; nothing of it is written then. With --require-converged a
 /// patch that did not converge is such an error (Numeric), naming the patch and its stop.
+/// With `window` (--window), each patch is written at the window's mean (slide_frame).
 FrameOutcome run_source_frame(const BindSetup& setup, const MeshFile& bind,
                               const FrameSource& source, const RunOptions& o, std::size_t i,
-                              CacheSlot slot, ReportFrame* record);
+                              CacheSlot slot, ReportFrame* record,
+                              const WindowedFrame* window = nullptr);
+
+/// Frame i of the run relaxed (relax_frame), for the windows that hold it: read (or posed) as
+/// run_source_frame reads it. \throw Error naming the frame.
+FrameRelaxations relax_source_frame(const BindSetup& setup, const MeshFile& bind,
+                                    const FrameSource& source, const RunOptions& o, std::size_t i);
 
 }  // namespace skinslide

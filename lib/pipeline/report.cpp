@@ -149,7 +149,10 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   for (const std::string& f : run.patch_files) files.push_back(json_string(f));
   root.add("patch_files", inline_array(files));
   Object options(2);
-  root.add("options", add(options, option_figures(setup.method)).str());
+  Figures option_list = option_figures(setup.method);
+  if (std::holds_alternative<ElasticMethod>(setup.method))
+    option_list.push_back({"window", static_cast<long long>(run.window)});
+  root.add("options", add(options, option_list).str());
   root.add("controls", controls_json(setup, run));
   root.add("patches", patches_json(setup));
   FrameSums sums;
@@ -184,6 +187,7 @@ void write_run_report(const RunOptions& o, const BindSetup& setup, double wall_s
                       RunReport& report) {
   report.bind = o.bind;
   report.patch_files = o.patches;
+  report.window = o.window;
   report.timings = o.report_timings;
   report.wall_seconds = wall_seconds;
   std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });

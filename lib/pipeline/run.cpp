@@ -19,6 +19,7 @@
 #include "pipeline/controls.h"
 #include "pipeline/dumps.h"
 #include "pipeline/frame_sources.h"
+#include "pipeline/frame_window.h"
 #include "pipeline/report.h"
 
 namespace skinslide {
@@ -37,12 +38,47 @@ void make_output_dir(const std::string& dir) {
 
 // The frame loop: the chosen frames on `threads` threads, each a pure function of its frame;
 // per chosen frame its error, if it failed. Stops at the first failure unless --keep-going.
+// --window's relaxations of the run's frames, shared by the frame loop's threads; null without
+// a window (or without a slide).
+std::unique_ptr<RelaxationStore> relaxation_store(const RunOptions& o, const BindSetup& setup,
+                                                  const MeshFile& bind, const FrameSource& source) {
+  if (o.window == 0 || o.no_slide) return nullptr;
+  const WindowPlan plan = o.rig ? ordered_window_plan(o.window, source.clip.names.size())
+                          : source.cache.cache
+                              ? ordered_window_plan(o.window, source.cache.names.size())
+                              : files_window_plan(o.window, o.frames);
+  return std::make_unique<RelaxationStore>(plan, source.plan.chosen, [&, o](size_t i) {
+    return relax_source_frame(setup, bind, source, o, i);
+  });
+}
+
+// Frame i of the run, slid (with its window's mean when `store`) and written.
+FrameOutcome run_chosen_frame(const BindSetup& setup, const MeshFile& bind,
+                              const FrameSource& source, const RunOptions& o, size_t i,
+                              CacheSlot slot, ReportFrame* record, RelaxationStore* store) {
+  if (!store) return run_source_frame(setup, bind, source, o, i, slot, record);
+  const std::vector<RelaxationStore::Member> window = store->window(i);
+  // A frame that cannot be relaxed fails as it would alone; a neighbour that cannot, every frame
+  // whose window holds it, naming both (the window's mean would be another one).
+  for (const RelaxationStore::Member& m : window)
+    if (m.error && m.frame == i) std::rethrow_exception(m.error);
+  for (const RelaxationStore::Member& m : window)
+    if (m.error) try {
+        std::rethrow_exception(m.error);
+      } catch (const Error& e) {
+        throw Error(e.kind(), frame_label(o, source, i) + ": its --window neighbour " + e.what());
+      }
+  const WindowedFrame windowed = windowed_frame(window, i);
+  return run_source_frame(setup, bind, source, o, i, slot, record, &windowed);
+}
+
 std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunEvents& events,
                                                  const BindSetup& setup, const MeshFile& bind,
                                                  const FrameSource& source, CacheWriter* cache_out,
                                                  unsigned threads, RunReport& report,
                                                  std::atomic<size_t>& not_converged) {
   const std::vector<size_t>& chosen = source.plan.chosen;
+  const std::unique_ptr<RelaxationStore> store = relaxation_store(o, setup, bind, source);
   const size_t count = chosen.size();
   const auto done = [&](size_t j, std::vector<LogLine> lines) {
     if (events.frame_done) events.frame_done(j, std::move(lines));
@@ -58,7 +94,9 @@ std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunE
       const CacheSlot slot{cache_out, j};  // the chosen frames are one run of samples
       try {
         ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
-        FrameOutcome outcome = run_source_frame(setup, bind, source, o, i, slot, record);
+        FrameOutcome outcome =
+            run_chosen_frame(setup, bind, source, o, i, slot, record, store.get());
+        if (store) store->done(i);
         if (!outcome.converged) ++not_converged;
         done(j, std::move(outcome.lines));
         continue;
@@ -69,6 +107,7 @@ std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunE
       } catch (const std::exception& e) {
         errors[j] = std::make_unique<Error>(ErrorKind::Internal, label + ": " + e.what());
       }
+      if (store) store->done(i);
       // Fail fast by default: a farm task with a bad frame should fail, not half-succeed
       // (README "Exit codes"). --keep-going writes every good frame and names every bad one.
       if (o.keep_going)

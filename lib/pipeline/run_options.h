@@ -49,6 +49,9 @@ struct RunOptions {
   bool report_timings = true;       ///< false: --report-no-timings
   // Method
   SlideOptions slide;  ///< the method and its options
+  /// --window N (elastic): each frame written at the mean of its own and its N neighbours' slides
+  /// on each side (pipeline/frame_window.h); 0: each frame its own.
+  int window = 0;
   // Controls (README "Controls"), read after the bind: their ids are checked against it.
   std::string weights;                      ///< --weights file; empty = none
   std::string weights_from_obj_color;       ///< "r", "g" or "b" of the OBJ bind; empty = none
@@ -64,7 +67,7 @@ struct RunOptions {
   /// A patch that did not converge (elastic stops other than "converged" and "at rest") fails
   /// its frame (exit 5) instead of being logged as not converged.
   bool require_converged = false;
-  bool no_slide = false;     ///< read, check and write every frame unchanged (not with `rig`)
+  bool no_slide = false;  ///< read, check and write every frame unchanged (not with `rig`)
 };
 
 /// How the run reads BIND and every FRAME (--mesh, --allow-uri-outside).

@@ -7,6 +7,8 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "elastic/surface_map.h"
+#include "elastic/window_mean.h"
 #include "mesh/measures.h"
 
 namespace skinslide {
@@ -39,17 +41,38 @@ bool at_rest(const Patch& patch, std::span<const Vec3> frame, const Positions3& 
   return true;
 }
 
-// Slides patch p by the method, then gathers what it wrote (mesh ids, surface samples) and the
-// slide figures both methods share.
-PatchFrameReport slide_and_gather(const BindSetup& setup, std::size_t p,
-                                  std::span<const Vec3> frame, const FrameExtras& extras,
-                                  SlidVertices& moved) {
-  const Patch& patch = setup.patches[p];
+// The frame's positions of patch p's vertices (local ids), checked computable.
+Positions3 patch_points(const Patch& patch, std::span<const Vec3> frame) {
   Positions3 points(patch.vertices.size());
   for (size_t i = 0; i < points.size(); ++i) points[i] = frame[patch.vertices[i]];
   require_computable_span(points, patch.vertices);
+  return points;
+}
+
+// Patch p written at the window's mean (rule 12), from its own relaxation.
+MethodSlide windowed_patch(const BindSetup& setup, std::size_t p, const Patch& patch,
+                           const Positions3& points, const WindowedFrame& window,
+                           int id_image_size) {
+  if (patch.skipped) return MethodSlide{PatchSlide{}, ElasticReport{}};
+  const ElasticSetup& elastic = *std::get<ElasticMethod>(setup.method).patches[p];
+  const ElasticResult written =
+      window_mean(elastic, points, window.own->patches[p], window.mean[p]);
+  ElasticSlide slide =
+      elastic_written(elastic, patch, points, setup.weight, written, id_image_size);
+  slide.slid.solve_seconds = window.own->seconds[p];
+  return {std::move(slide.slid), std::move(slide.report)};
+}
+
+// Slides patch p by the method (or writes the window's mean), then gathers what it wrote (mesh
+// ids, surface samples) and the slide figures both methods share.
+PatchFrameReport slide_and_gather(const BindSetup& setup, std::size_t p,
+                                  std::span<const Vec3> frame, const FrameExtras& extras,
+                                  const WindowedFrame* window, SlidVertices& moved) {
+  const Patch& patch = setup.patches[p];
+  const Positions3 points = patch_points(patch, frame);
   MethodSlide slide =
-      slide_patch(setup.method, p, patch, points, setup.weight, extras.id_image_size);
+      window ? windowed_patch(setup, p, patch, points, *window, extras.id_image_size)
+             : slide_patch(setup.method, p, patch, points, setup.weight, extras.id_image_size);
   PatchFrameReport report;
   report.method = std::move(slide.report);
   PatchSlide& slid = slide.slid;
@@ -107,12 +130,47 @@ Figures frame_figures(const PatchFrameReport& report) {
   return figures;
 }
 
-FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
-                        const FrameExtras& extras) {
+// A frame with another vertex count than the bind's is refused.
+void require_bind_count(const BindSetup& setup, std::span<const Vec3> frame) {
   if (static_cast<Index>(frame.size()) != setup.vertex_count)
     throw Error(ErrorKind::Input, "the frame has " + std::to_string(frame.size()) +
                                       " vertices; the bind has " +
                                       std::to_string(setup.vertex_count));
+}
+
+FrameRelaxations relax_frame(const BindSetup& setup, std::span<const Vec3> frame) {
+  require_bind_count(setup, frame);
+  const ElasticMethod& method = std::get<ElasticMethod>(setup.method);
+  FrameRelaxations out;
+  out.patches.resize(setup.patches.size());
+  out.seconds.assign(setup.patches.size(), 0.0);
+  for (size_t p = 0; p < setup.patches.size(); ++p) {
+    const Patch& patch = setup.patches[p];
+    if (patch.skipped) continue;
+    try {
+      const Positions3 points = patch_points(patch, frame);
+      const ElasticSetup& elastic = *method.patches[p];
+      const auto t0 = Clock::now();
+      ElasticResult& r = out.patches[p] = relax_patch(elastic, points, method.options);
+      out.seconds[p] = seconds_since(t0);
+      // A frame at rest is written unchanged (slide_and_gather): its slide is none.
+      if (at_rest(patch, frame, setup.bind_positions))
+        for (size_t i = 0; i < elastic.movable.size(); ++i) {
+          const Index v = elastic.movable[i];
+          r.uv[i] = elastic.chart.uv[v];
+          r.where[i] = at_node(elastic.chart, v);
+          r.position[i] = points[v];
+        }
+    } catch (const Error& e) {
+      throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
+    }
+  }
+  return out;
+}
+
+FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
+                        const FrameExtras& extras, const WindowedFrame* window) {
+  require_bind_count(setup, frame);
   FrameResult result;
   SlidVertices& slid = result.slid;
   size_t free_vertices = 0;
@@ -122,7 +180,7 @@ FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
   slid.position.reserve(free_vertices);
   for (size_t p = 0; p < setup.patches.size(); ++p) {
     try {
-      result.patches.push_back(slide_and_gather(setup, p, frame, extras, slid));
+      result.patches.push_back(slide_and_gather(setup, p, frame, extras, window, slid));
     } catch (const Error& e) {
       throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
     }

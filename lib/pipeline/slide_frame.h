@@ -50,14 +50,36 @@ struct FrameExtras {
   bool edge_spread = false;  ///< PatchFrameReport::spread_frame and spread_slid
 };
 
+/// One frame's elastic relaxation of every patch (an empty result for a skipped patch), each with
+/// its wall time: what a window over the neighbouring frames averages (frame_window.h).
+struct FrameRelaxations {
+  std::vector<ElasticResult> patches;  ///< parallel to BindSetup::patches
+  std::vector<double> seconds;         ///< per patch, the relaxation's wall time
+};
+
+/// Relaxes every patch of one frame as slide_frame does, without writing anything: a patch at
+/// rest (every vertex at its bind position to float32 precision) keeps its start, as slide_frame
+/// writes it. Pure (the timings aside). \pre setup.method is the elastic method.
+/// 	hrow Error as slide_frame.
+FrameRelaxations relax_frame(const BindSetup& setup, std::span<const Vec3> frame);
+
+/// What slide_frame writes under a window (frame_window.h): per patch this frame's own
+/// relaxation and the window's mean of chart points (window_mean.h).
+struct WindowedFrame {
+  const FrameRelaxations* own = nullptr;
+  std::vector<Positions2> mean;  ///< parallel to BindSetup::patches; empty for a skipped patch
+};
+
 /// Slides one frame. `frame` holds the deformed positions of every mesh vertex (#V).
 /// A free vertex v of weight w = setup.weight[v] (1 when empty) is written at
 /// frame + w (slid - frame): exactly `slid` for w = 1; not written at all for w = 0.
-/// Pure: the result depends only on (setup, frame) (the *_seconds timings aside).
+/// Pure: the result depends only on (setup, frame) (the *_seconds timings aside). With `window`
+/// (elastic only), each patch is written at the window's mean instead of its own relaxation, which
+/// is not repeated: the result then depends on (setup, frame, window).
 /// \throw Error(Input) when `frame` does not have the bind's vertex count.
 /// \throw Error(Numeric) when a solve fails or a result is not finite.
 FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
-                        const FrameExtras& extras = {});
+                        const FrameExtras& extras = {}, const WindowedFrame* window = nullptr);
 
 /// A patch's figures in a frame, in the report's order: the method's (report_figures), then the
 /// slide's (at_rest, moved, max_slide, mean_slide, spread_frame, spread_slid).

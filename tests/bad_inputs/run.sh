@@ -596,6 +596,25 @@ grep -qF "nan.0001.obj:7:" "$tmp/stderr" && grep -qF "fewer.0001.obj:25: face in
   fail "keep_going_bad_frames does not name both bad frames"
 expect keep_going_exit_code_of_first 4 "2 failed" -o "$tmp/hasdir" --keep-going --patch $P $B $F "$tmp/nan.0001.obj"
 
+# --- --window: a frame written with its neighbours ----------------------------------------------
+expect window_paper 2 "--window: applies to --method elastic only, not to --method paper" --window 2 --method paper --patch $P $B $F
+expect window_not_a_number 2 "--window" --window two --patch $P $B $F
+expect window_too_wide 2 "--window" --window 101 --patch $P $B $F
+expect window_frame_without_number 2 "--window 1: $tmp/rest.obj has no frame number (name.0042.obj), and a window takes each frame's neighbours by their numbers" --window 1 --patch $P $B $F "$tmp/rest.obj"
+mkdir -p "$tmp/other"
+cp $F "$tmp/other/shot.0001.obj"
+expect window_one_number_twice 2 "are both frame 1: a window takes each frame's neighbours by their numbers" --window 1 --patch $P $B $F "$tmp/other/shot.0001.obj"
+cp $F "$tmp/win.0001.obj"
+cp "$tmp/nan.0001.obj" "$tmp/win.0002.obj"
+cp grid.0002.obj "$tmp/win.0003.obj"
+cp $F "$tmp/win.0005.obj"
+# A broken frame fails itself and every frame whose window holds it, naming both; frame 5 is two
+# frames of the sequence given away (frame 4 is not given) and is written.
+expect window_broken_neighbour 3 "win.0001.obj: its --window neighbour $tmp/win.0002.obj:7: vertex coordinate 'nan' is not finite" --keep-going --window 1 -j 1 --patch $P $B "$tmp/win.0001.obj" "$tmp/win.0002.obj" "$tmp/win.0003.obj" "$tmp/win.0005.obj"
+ls "$tmp/out/window_broken_neighbour" 2>/dev/null | tr '\n' ' ' >"$tmp/written"
+[ "$(cat "$tmp/written")" = "win.0005.obj " ] || fail "window_broken_neighbour wrote: $(cat "$tmp/written")"
+grep -qF "1 frames slid, 3 failed" "$tmp/stderr" || fail "window_broken_neighbour: not '1 frames slid, 3 failed'"
+
 # --- config files (--config): every key an option, every value checked as on the command line ---
 printf '# a shot\nmethd = "paper"\npatch = ["all.txt"]\n' >"$tmp/typo.toml"
 expect config_unknown_key 2 "typo.toml:2: unknown key 'methd'; the nearest option is 'method'" --config "$tmp/typo.toml" $B $F

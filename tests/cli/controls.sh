@@ -42,7 +42,7 @@ r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
                    "totals", "timings"], list(r)
 assert r["options"] == {"method": "elastic", "rotation_fits": 3, "max_iterations": 100, "tolerance": 3e-4,
-                        "convergence": 0.05, "blend": 0, "ease_in": 0}, r["options"]
+                        "convergence": 0.05, "blend": 0, "ease_in": 0, "window": 0}, r["options"]
 assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving", "loops",
                                  "outer_loop_start", "outer_loop_chosen", "skipped",
                                  "chart_weights"], list(r["patches"][0])
@@ -50,12 +50,12 @@ p = r["patches"][0]
 assert p["free"] == 288 and p["moving"] == 288 and p["outer_loop_start"] == 352 and not p["skipped"]
 assert [f["path"] for f in r["frames"]] == ["data/elbow/frames/elbow.000%d.obj" % k for k in range(1, 6)]
 keys = ["energy_before", "energy_after", "iterations", "solves", "solve_iterations", "escalations", "stop",
-        "converged", "first_order_gain", "first_order_share", "held", "flips", "at_rest", "moved",
+        "converged", "first_order_gain", "first_order_share", "held", "flips", "window_returned", "at_rest", "moved",
         "max_slide", "mean_slide", "spread_frame", "spread_slid"]
 for f in r["frames"]:
     fp = f["patches"][0]
     assert list(fp) == keys, list(fp)
-    assert fp["energy_after"] <= fp["energy_before"] and fp["flips"] == 0, fp
+    assert fp["energy_after"] <= fp["energy_before"] and fp["flips"] == 0 and fp["window_returned"] == 0, fp
     assert fp["stop"] in ("at rest", "converged", "small gain", "limit", "no step", "no descent"), fp
     # A stop says converged only where the measure does (lib/elastic/README.md rule 10).
     assert fp["converged"] == (fp["stop"] in ("at rest", "converged")), fp
@@ -76,11 +76,30 @@ assert [f["patches"][0]["at_rest"] for f in r["frames"]] == [True] + [False] * 4
 assert r["frames"][0]["patches"][0]["moved"] == 0  # so it comes back unchanged
 last = r["frames"][-1]["patches"][0]
 assert last["spread_slid"] < last["spread_frame"] and last["moved"] == 288 and last["iterations"] > 0
-assert list(r["totals"]) == ["frames", "moved", "iterations", "held", "flips", "not_converged",
-                             "max_slide"], list(r["totals"])
+assert list(r["totals"]) == ["frames", "moved", "iterations", "held", "flips", "window_returned",
+                             "not_converged", "max_slide"], list(r["totals"])
 assert r["totals"]["not_converged"] == sum(not f["patches"][0]["converged"] for f in r["frames"])
 assert r["totals"]["frames"] == 5 and r["totals"]["moved"] == 4 * 288 and r["totals"]["flips"] == 0
 assert list(r["timings"]) == ["bind_setup", "read", "solve", "locate", "transfer", "write", "wall"]
+PY
+# --window 2: the report names it, each frame's stop and steps are its own relaxation's (the same
+# as without a window), what is written keeps the promises, and the log line says it.
+"$bin" -j 1 --window 2 --report "$tmp/w.json" "${elbow[@]}" -o "$tmp/w" 2>"$tmp/w.log"
+check "--window 2: the bind's log line names the window" \
+  grep -qF "288 sliding vertices (method elastic, window 2)" "$tmp/w.log"
+check "--window 2: the report's options, stops and promises" $py - "$tmp/w.json" "$tmp/r1.json" <<'PY'
+import json, sys
+w, r = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert w["options"] == dict(r["options"], window=2), w["options"]
+for fw, fr in zip(w["frames"], r["frames"]):
+    pw, pr = fw["patches"][0], fr["patches"][0]
+    for k in ("energy_before", "iterations", "stop", "converged", "first_order_gain"):
+        assert pw[k] == pr[k], (k, pw, pr)
+    assert pw["energy_after"] <= pw["energy_before"] and pw["flips"] == 0, pw
+moved = [f["patches"][0]["energy_after"] != g["patches"][0]["energy_after"]
+         for f, g in zip(w["frames"][1:], r["frames"][1:])]
+assert all(moved), "every moving frame is written at its window's mean, not at its own slide"
+assert w["totals"]["window_returned"] == sum(f["patches"][0]["window_returned"] for f in w["frames"])
 PY
 check "the report (--method paper) is JSON with the documented keys" $py - "$tmp/p1.json" <<'PY'
 import json, sys

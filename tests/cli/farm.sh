@@ -2,7 +2,7 @@
 # Identical bytes on every farm: outputs do not depend on --threads (1, 2, 8), on running the
 # frames all together, one at a time or in reverse order, on which run it is, nor on splitting a
 # shot into --frames chunks run side by side (xargs -P) as a render farm does, as OBJ frames or
-# as a point cache whose chunks are joined (`skinslide join`). And a run killed
+# as a point cache whose chunks are joined (`skinslide join`); with --window too. And a run killed
 # with SIGKILL leaves each output either as it was before or complete, never partial. The default
 # method (elastic) throughout; thread counts, order and the farm split with --method paper too.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/farm.sh
@@ -120,6 +120,33 @@ check "the chunks are named by their frames" test "$(cd "$tmp/cachefarm" && echo
 check "skinslide join" "$bin" join -q "$tmp"/cachefarm/shot.*-*.pc2
 check "the joined chunks are the one-task cache, byte for byte" cmp "$tmp/cache1/shot.pc2" "$tmp/cachefarm/shot.pc2"
 check "the slid cache is not the input" bash -c "! cmp -s '$tmp/shot.pc2' '$tmp/cache1/shot.pc2'"
+
+# --- --window: each frame written with its neighbours ------------------------------------------
+# With --window 2 frame f depends on frames f-2..f+2 of the sequence given (by frame number): the
+# same bytes still for any thread count, the order the files are given in and a farm split,
+# since every task is given the whole shot and picks its chunk with --frames.
+check "--window 2, --threads 1" slide --window 2 -j 1 -o "$tmp/w1" "${frames[@]}"
+check "--window 2, --threads 8" slide --window 2 -j 8 -o "$tmp/w8" "${frames[@]}"
+check "--window 2: --threads 1 and 8 give identical bytes" same_tree "$tmp/w1" "$tmp/w8" 24
+check "--window 2: reversed order" slide --window 2 -j 2 -o "$tmp/wrev" "${reversed[@]}"
+check "--window 2: reversed order gives identical bytes" same_tree "$tmp/w1" "$tmp/wrev" 24
+check "--window 2: the chunks run side by side (xargs -P 3)" \
+  xargs -P 3 -I RANGE "$bin" -q -j 1 --window 2 --frames RANGE -o "$tmp/wfarm" \
+  --patch data/elbow/patch.txt data/elbow/bind.obj "${frames[@]}" <"$tmp/chunks"
+check "--window 2: the farm split gives the whole run's bytes" same_tree "$tmp/w1" "$tmp/wfarm" 24
+check "--window 0 is no window" slide --window 0 -j 2 -o "$tmp/w0" "${frames[@]}"
+check "--window 0 gives the run's bytes without it" same_tree "$tmp/t1" "$tmp/w0" 24
+check "--window 2: frames 2 and 7 (same input, other neighbours) differ" \
+  bash -c "! cmp -s '$tmp/w1/arm.0002.obj' '$tmp/w1/arm.0007.obj'"
+check "--window 2: the whole cache, one task" slide --window 2 -j 2 -o "$tmp/wcache1" "$tmp/shot.pc2"
+check "--window 2: the cache's chunks run side by side (xargs -P 3)" \
+  xargs -P 3 -I RANGE "$bin" -q -j 1 --window 2 --frames RANGE -o "$tmp/wcachefarm" \
+  --patch data/elbow/patch.txt data/elbow/bind.obj "$tmp/shot.pc2" <"$tmp/chunks"
+check "--window 2: skinslide join" "$bin" join -q "$tmp"/wcachefarm/shot.*-*.pc2
+check "--window 2: the joined chunks are the one-task cache, byte for byte" \
+  cmp "$tmp/wcache1/shot.pc2" "$tmp/wcachefarm/shot.pc2"
+check "--window 2: the cache is not the one without a window" \
+  bash -c "! cmp -s '$tmp/cache1/shot.pc2' '$tmp/wcache1/shot.pc2'"
 
 # --- SIGKILL mid-run ----------------------------------------------------------------------------
 # The output folder starts with an older complete version of every output (the unslid frame).

@@ -1,0 +1,186 @@
+// --window: the sequence's order, the weights, the store of relaxations, and what a windowed frame
+// writes (pipeline/frame_window.h, elastic/window_mean.h).
+#include "pipeline/frame_window.h"
+
+#include <atomic>
+#include <thread>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "elastic/window_mean.h"
+#include "helpers/samples.h"
+#include "mesh/measures.h"
+
+namespace skinslide {
+namespace {
+
+std::vector<std::pair<std::size_t, double>> pairs(const std::vector<WindowWeight>& w) {
+  std::vector<std::pair<std::size_t, double>> out;
+  for (const WindowWeight& m : w) out.emplace_back(m.frame, m.weight);
+  return out;
+}
+
+TEST(FrameWindow, WeightsFallFromTheFrameAndAreRenormalisedWhereTheSequenceEnds) {
+  const WindowPlan plan = ordered_window_plan(2, 10);
+  using P = std::vector<std::pair<std::size_t, double>>;
+  EXPECT_EQ(pairs(window_of(plan, 5)),
+            (P{{3, 1 / 9.0}, {4, 2 / 9.0}, {5, 3 / 9.0}, {6, 2 / 9.0}, {7, 1 / 9.0}}));
+  EXPECT_EQ(pairs(window_of(plan, 0)), (P{{0, 3 / 6.0}, {1, 2 / 6.0}, {2, 1 / 6.0}}));
+  EXPECT_EQ(pairs(window_of(plan, 9)), (P{{7, 1 / 6.0}, {8, 2 / 6.0}, {9, 3 / 6.0}}));
+  EXPECT_EQ(pairs(window_of(ordered_window_plan(3, 1), 0)), (P{{0, 1.0}}));
+}
+
+TEST(FrameWindow, FilesAreOrderedByTheirFrameNumbersNotTheOrderGiven) {
+  const WindowPlan plan = files_window_plan(1, {"s/a.0010.obj", "s/a.0002.obj", "s/a.0007.obj"});
+  EXPECT_EQ(plan.order, (std::vector<std::size_t>{1, 2, 0}));
+  using P = std::vector<std::pair<std::size_t, double>>;
+  // frame 7 (index 2) lies between frames 2 and 10
+  EXPECT_EQ(pairs(window_of(plan, 2)), (P{{1, 0.25}, {2, 0.5}, {0, 0.25}}));
+}
+
+TEST(FrameWindow, FilesWithoutNumbersOrWithOneNumberTwiceAreRefused) {
+  try {
+    files_window_plan(2, {"a.0001.obj", "rest.obj"});
+    FAIL() << "no frame number";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    EXPECT_STREQ(e.what(),
+                 "--window 2: rest.obj has no frame number (name.0042.obj), and a window takes "
+                 "each frame's neighbours by their numbers");
+  }
+  try {
+    files_window_plan(1, {"x/a.0001.obj", "y/b.0001.obj"});
+    FAIL() << "one number twice";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    EXPECT_STREQ(e.what(),
+                 "--window 1: x/a.0001.obj and y/b.0001.obj are both frame 1: a window takes "
+                 "each frame's neighbours by their numbers");
+  }
+}
+
+TEST(FrameWindow, TheStoreRelaxesEachFrameOnceWhateverTheThreadsAndKeepsItsErrors) {
+  constexpr std::size_t kFrames = 12;
+  std::vector<std::size_t> chosen;
+  for (std::size_t f = 0; f < kFrames; ++f) chosen.push_back(f);
+  std::atomic<int> calls[kFrames] = {};
+  RelaxationStore store(ordered_window_plan(3, kFrames), chosen, [&](std::size_t f) {
+    ++calls[f];
+    if (f == 4) throw Error(ErrorKind::Input, "frame 4 is broken");
+    FrameRelaxations r;
+    r.patches.resize(1);
+    r.patches[0].uv = {Vec2(static_cast<double>(f), 0)};
+    r.seconds = {0};
+    return r;
+  });
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> failed_windows{0};
+  auto worker = [&] {
+    for (std::size_t f; (f = next++) < kFrames;) {
+      const auto window = store.window(f);
+      bool failed = false;
+      for (const auto& m : window) {
+        failed |= m.error != nullptr;
+        EXPECT_EQ(m.error != nullptr, m.frame == 4);
+        if (!m.error) {
+          EXPECT_EQ(m.relaxations->patches[0].uv[0].x(), static_cast<double>(m.frame));
+        }
+      }
+      failed_windows += failed;
+      store.done(f);
+    }
+  };
+  std::thread a(worker), b(worker), c(worker);
+  a.join();
+  b.join();
+  c.join();
+  for (std::size_t f = 0; f < kFrames; ++f) EXPECT_EQ(calls[f], 1) << "frame " << f;
+  EXPECT_EQ(failed_windows, 7) << "frames 1-7 hold frame 4";
+}
+
+// The data/elbow sample relaxed in each frame, for the windowed slides below.
+struct ElbowRun {
+  test::Sample sample = test::load_sample("elbow");
+  BindSetup setup = bind_setup(sample.bind, {sample.faces}, SlideOptions{});
+  std::vector<FrameRelaxations> relaxed;
+  ElbowRun() {
+    for (const Positions3& f : sample.frames) relaxed.push_back(relax_frame(setup, f));
+  }
+};
+
+TEST(FrameWindow, AWindowOfOneFrameWritesItsOwnSlide) {
+  const ElbowRun run;
+  const std::size_t f = 2;
+  const FrameResult plain = slide_frame(run.setup, run.sample.frames[f]);
+  WindowedFrame own;
+  own.own = &run.relaxed[f];
+  own.mean = {run.relaxed[f].patches[0].uv};
+  const FrameResult windowed = slide_frame(run.setup, run.sample.frames[f], {}, &own);
+  ASSERT_EQ(windowed.slid.vertex, plain.slid.vertex);
+  const double diag = test::diagonal(run.sample.frames[f]);
+  for (std::size_t k = 0; k < plain.slid.position.size(); ++k)
+    EXPECT_LE((windowed.slid.position[k] - plain.slid.position[k]).norm(), 1e-12 * diag);
+  EXPECT_EQ(test::elastic(windowed.patches[0]).window_returned, 0);
+}
+
+TEST(FrameWindow, AWindowedFrameKeepsEveryPromiseOfAFrameAlone) {
+  const ElbowRun run;
+  const std::size_t f = 2;
+  const Positions3& frame = run.sample.frames[f];
+  // The mean of the neighbours, with one triangle folded in the chart: a corner pushed past
+  // another.
+  WindowedFrame window;
+  window.own = &run.relaxed[f];
+  window.mean = {chart_point_mean(
+      {{&run.relaxed[1].patches[0].uv, 0.5}, {&run.relaxed[3].patches[0].uv, 0.5}})};
+  Positions2& mean = window.mean[0];
+  const ElasticSetup& elastic = *test::elastic(run.setup).patches[0];
+  const Triangle t = elastic.chart.triangles[elastic.chart.patch_triangle_count / 2];
+  const Index a = elastic.movable_slot[t[0]], b = elastic.movable_slot[t[1]];
+  ASSERT_GE(a, 0);
+  ASSERT_GE(b, 0);
+  mean[a] = mean[b] + 0.5 * (mean[b] - mean[a]);
+  const FrameResult r = slide_frame(run.setup, frame, {.edge_spread = true}, &window);
+  const Patch& patch = run.setup.patches[0];
+  const ElasticReport& report = test::elastic(r.patches[0]);
+  EXPECT_GT(report.window_returned, 0);
+  EXPECT_LT(report.window_returned, static_cast<int>(elastic.movable.size()) / 10)
+      << "the fold's corners and a few around it go back, not the whole patch";
+  EXPECT_EQ(report.slid_flips, 0);
+  EXPECT_EQ(flipped_triangles(r.patches[0].frame_net, patch.triangles), 0);
+  EXPECT_LE(report.energy_after, report.energy_before);
+  const Positions3 out = apply_slide(frame, r.slid);
+  const double diag = test::diagonal(frame);
+  std::vector<char> free(frame.size(), 0);
+  for (Index v : patch.free_vertices) free[patch.vertices[v]] = 1;
+  for (std::size_t v = 0; v < frame.size(); ++v) {
+    if (!free[v]) {
+      EXPECT_EQ(out[v], frame[v]) << "border and outside vertices stay";
+    } else {
+      EXPECT_LE(test::distance_to_patch(patch, frame, out[v]), 1e-12 * diag) << "on the surface";
+    }
+  }
+}
+
+TEST(FrameWindow, ARigidCopyOfTheBindAmongMovingNeighboursComesBackAsItIs) {
+  const ElbowRun run;
+  Positions3 rigid = run.sample.frames[0];
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  for (Vec3& p : rigid) p = 2.0 * (turn * p) + Vec3(0.5, -1, 2);
+  const FrameRelaxations own = relax_frame(run.setup, rigid);
+  ASSERT_EQ(test::elastic(run.setup).patches.size(), 1u);
+  ASSERT_EQ(own.patches[0].stop, ElasticStop::AtRest);
+  WindowedFrame window;
+  window.own = &own;
+  window.mean = {chart_point_mean(
+      {{&run.relaxed[2].patches[0].uv, 0.5}, {&run.relaxed[3].patches[0].uv, 0.5}})};
+  const FrameResult r = slide_frame(run.setup, rigid, {}, &window);
+  EXPECT_EQ(apply_slide(rigid, r.slid), rigid);
+  EXPECT_EQ(test::elastic(r.patches[0]).window_returned, 0) << "at rest, not sent back";
+}
+
+}  // namespace
+}  // namespace skinslide
