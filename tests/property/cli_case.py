@@ -289,6 +289,12 @@ def build(seed, meshes, ctx):
     case.require_converged = (case.method == "elastic" and not case.no_slide and
                               "--require-converged" in ctx.options and
                               random.Random(seed ^ 0xC0417).random() < 0.25)
+    # --window N (elastic): each frame written with its neighbours' slides (README "Elastic"), a
+    # frame's failure failing the windows that hold it. From streams of its own too.
+    case.window = 0
+    if case.method == "elastic" and not case.no_slide and "--window" in ctx.options and \
+            random.Random(seed ^ 0x3A1D0).random() < 0.2:
+        case.window = random.Random(seed ^ 0x3A1D1).choice([1, 2, 4])
     return case
 
 
@@ -380,6 +386,8 @@ def write(case, folder):
     args += case.options
     if case.require_converged:
         args.append("--require-converged")
+    if getattr(case, "window", 0):
+        args += ["--window", str(case.window)]
     if case.config:
         # some options from a TOML file instead (README "Controls": --config); the command line
         # keeps the rest
@@ -585,10 +593,10 @@ def expected_codes(case):
     if short is None:
         return {0, 3}, "paper: an outer loop of 3 vertices may be chosen (a near tie)"
     codes, why = _geometry_codes(case)
-    if any(f.bad for f in _selected_frames(case)):
+    if any(f.bad for f in _read_frames(case)):
         # frames are slid in order: an earlier frame may fail first (--require-converged)
         return (codes - {0}) | {3}, "a broken frame file" + ("" if codes == {0} else f"; or {why}")
-    if any(getattr(f, "weld_changed", False) for f in _selected_frames(case)):
+    if any(getattr(f, "weld_changed", False) for f in _read_frames(case)):
         # the frame is refused when read (exit 3); an earlier frame may fail first
         return (codes - {0}) | {3}, \
             "a glTF frame whose float32 positions weld differently from the bind" + \
@@ -709,8 +717,14 @@ def rerun_args(case, args, rng):
         k += 1
     frames = [f for f in _selected_frames(case)]
     subset = [f for f in frames if rng.random() < 0.7] or frames[-1:]
+    given = subset
+    if getattr(case, "window", 0):
+        # a window's neighbours are the frames given: every frame, the subset picked by --frames
+        # (README "Farm")
+        given = case.frames
+        kept = kept[:-1] + ["--frames", ",".join(str(f.number) for f in subset)] + kept[-1:]
     return kept[:-1] + ["-j", "2" if case.threads == 1 else "1", "-o", "out2", kept[-1]] + \
-        [f"frames/{f.name}" for f in reversed(subset)], [f.name for f in subset]
+        [f"frames/{f.name}" for f in reversed(given)], [f.name for f in subset]
 
 
 def shell_words(args):
@@ -738,7 +752,8 @@ def _check_partial(case, folder, stderr=""):
         if unconverged and path.exists():
             out.append(f"{f.name} failed --require-converged and has an output")
         if case.keep_going and not f.bad and not f.degenerate and not unconverged and \
-                not path.exists() and not case.frames_spec:
+                not path.exists() and not case.frames_spec and \
+                not any(g.bad for g in _window(case, f)):
             out.append(f"--keep-going: the good frame {f.name} has no output")
     # what was written is complete and slid as promised
     pairs, problems = _pairs(case, folder, None, partial=True)
@@ -747,6 +762,30 @@ def _check_partial(case, folder, stderr=""):
     for pair in pairs:
         problems += check_slide(case, pair, may_move, tris)
     return out + problems
+
+
+def _sequence(case):
+    """The frames in the order --window takes them: FRAME files by number, samples by index."""
+    if case.mode == "files":
+        return sorted(case.frames, key=lambda f: f.number)
+    return list(case.frames)
+
+
+def _window(case, frame):
+    """The frames within --window of `frame` in the sequence (itself alone without a window)."""
+    reach = getattr(case, "window", 0)
+    seq = _sequence(case)
+    at = next(k for k, f in enumerate(seq) if f is frame)
+    return seq[max(0, at - reach):at + reach + 1]
+
+
+def _read_frames(case):
+    """The frames a run reads: the selected ones and, with --window, their neighbours."""
+    chosen = _selected_frames(case)
+    if not getattr(case, "window", 0) or case.mode == "animation":
+        return chosen
+    held = {id(g) for f in chosen for g in _window(case, f)}
+    return [f for f in case.frames if id(f) in held]
 
 
 def _selected_frames(case):
@@ -1322,7 +1361,8 @@ def reference_args(case):
 def describe(case):
     lines = [f"seed {case.seed}: " + "; ".join(case.notes)]
     lines.append(f"method {case.method}, mode {case.mode}, options {case.options}"
-                 f"{' --require-converged' if getattr(case, 'require_converged', False) else ''}, pins "
+                 f"{' --require-converged' if getattr(case, 'require_converged', False) else ''}"
+                 f"{' --window %d' % case.window if getattr(case, 'window', 0) else ''}, pins "
                  f"{None if case.pins is None else len(case.pins)}, weights "
                  f"{'file' if case.weight_file else case.colour_channel}, strength {case.strength}")
     if case.frames_spec:
