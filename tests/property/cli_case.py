@@ -753,7 +753,8 @@ def _check_partial(case, folder, stderr=""):
             out.append(f"{f.name} failed --require-converged and has an output")
         if case.keep_going and not f.bad and not f.degenerate and not unconverged and \
                 not path.exists() and not case.frames_spec and \
-                not any(g.bad for g in _window(case, f)):
+                not any(g.bad or g.degenerate or getattr(g, "weld_changed", False)
+                        for g in _window(case, f)):
             out.append(f"--keep-going: the good frame {f.name} has no output")
     # what was written is complete and slid as promised
     pairs, problems = _pairs(case, folder, None, partial=True)

@@ -43,6 +43,7 @@ def _frame_positions(case, f):
 def build(seed, meshes, ctx):
     case = cli_case.build(seed, meshes, ctx)
     case.require_converged = False  # a command-line option: the module's runs compare with exit 0
+    case.window = 0  # a run's option (its neighbouring frames): the module slides a frame at a time
     rng = random.Random(seed ^ 0x5EED)
     case.py_usage = None
     case.py_input = None
