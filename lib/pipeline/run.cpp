@@ -36,8 +36,6 @@ void make_output_dir(const std::string& dir) {
     throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
 }
 
-// The frame loop: the chosen frames on `threads` threads, each a pure function of its frame;
-// per chosen frame its error, if it failed. Stops at the first failure unless --keep-going.
 // --window's relaxations of the run's frames, shared by the frame loop's threads; null without
 // a window (or without a slide).
 std::unique_ptr<RelaxationStore> relaxation_store(const RunOptions& o, const BindSetup& setup,
@@ -72,6 +70,9 @@ FrameOutcome run_chosen_frame(const BindSetup& setup, const MeshFile& bind,
   return run_source_frame(setup, bind, source, o, i, slot, record, &windowed);
 }
 
+// The frame loop: the chosen frames on `threads` threads, each a pure function of its frame (and
+// with --window of its window's relaxations); per chosen frame its error, if it failed. Stops at
+// the first failure unless --keep-going.
 std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunEvents& events,
                                                  const BindSetup& setup, const MeshFile& bind,
                                                  const FrameSource& source, CacheWriter* cache_out,

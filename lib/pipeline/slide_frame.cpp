@@ -130,6 +130,8 @@ Figures frame_figures(const PatchFrameReport& report) {
   return figures;
 }
 
+namespace {
+
 // A frame with another vertex count than the bind's is refused.
 void require_bind_count(const BindSetup& setup, std::span<const Vec3> frame) {
   if (static_cast<Index>(frame.size()) != setup.vertex_count)
@@ -137,6 +139,8 @@ void require_bind_count(const BindSetup& setup, std::span<const Vec3> frame) {
                                       " vertices; the bind has " +
                                       std::to_string(setup.vertex_count));
 }
+
+}  // namespace
 
 FrameRelaxations relax_frame(const BindSetup& setup, std::span<const Vec3> frame) {
   require_bind_count(setup, frame);
