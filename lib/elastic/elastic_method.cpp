@@ -82,7 +82,7 @@ std::string convergence_text(const ElasticReport& r) {
 std::string frame_summary(const std::vector<Patch>& patches,
                           const std::function<const ElasticReport&(std::size_t)>& report,
                           const std::string& max_slide) {
-  int iterations = 0, flips = 0;
+  int iterations = 0, flips = 0, returned = 0;
   double before = 0, after = 0;
   std::string unconverged;
   for (std::size_t p = 0; p < patches.size(); ++p) {
@@ -90,15 +90,20 @@ std::string frame_summary(const std::vector<Patch>& patches,
     const ElasticReport& r = report(p);
     iterations = std::max(iterations, r.iterations);
     flips += r.slid_flips;
+    returned += r.window_returned;
     before += r.energy_before;
     after += r.energy_after;
     if (!converged(r))
       unconverged += (unconverged.empty() ? ", not converged: patch " : ", patch ") +
                      std::to_string(p) + " (" + convergence_text(r) + ")";
   }
+  // --window's mean given way to a frame's own slide (rule 12) is told, not only counted.
+  const std::string window_text =
+      returned > 0 ? ", " + std::to_string(returned) + " vertices off the window's mean"
+                   : std::string();
   return "elastic " + std::to_string(iterations) + " it, energy left " +
          (before > 0 ? log_number(100 * after / before) + "%" : std::string("0")) + ", flips " +
-         std::to_string(flips) + max_slide + unconverged;
+         std::to_string(flips) + max_slide + window_text + unconverged;
 }
 
 std::string patch_summary(const ElasticReport& r) {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "elastic/elastic_method.h"
 #include "elastic/window_mean.h"
 #include "helpers/samples.h"
 #include "mesh/measures.h"
@@ -148,6 +149,12 @@ TEST(FrameWindow, AWindowedFrameKeepsEveryPromiseOfAFrameAlone) {
   EXPECT_GT(report.window_returned, 0);
   EXPECT_LT(report.window_returned, static_cast<int>(elastic.movable.size()) / 10)
       << "the fold's corners and a few around it go back, not the whole patch";
+  const std::string line = frame_summary(
+      run.setup.patches, [&](std::size_t) -> const ElasticReport& { return report; }, "");
+  EXPECT_NE(
+      line.find(", " + std::to_string(report.window_returned) + " vertices off the window's mean"),
+      std::string::npos)
+      << line;
   EXPECT_EQ(report.slid_flips, 0);
   EXPECT_EQ(flipped_triangles(r.patches[0].frame_net, patch.triangles), 0);
   EXPECT_LE(report.energy_after, report.energy_before);
