@@ -180,7 +180,7 @@ void add_method(CLI::App& app, CliOptions& o) {
       app.add_option("--window", o.run.window,
                      "Elastic: write each frame's slide as the mean of its own and its N "
                      "neighbours' on each side in the sequence given (frame numbers; in the "
-                     "chart, weights N+1-|k|): 3-13x less jitter in slow motion with 4. "
+                     "chart, weights N+1-|k|): 2.9-13x less jitter in slow motion with 4. "
                      "A frame then depends on its neighbours: give a farm chunk the whole "
                      "sequence and its range with --frames")
           ->type_name("N")
