@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include <Eigen/Geometry>
-
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "elastic/line_search.h"
@@ -20,18 +18,11 @@ namespace {
 int hold_weighted_folds(const ElasticSetup& setup, const Patch& patch, const Positions3& frame,
                         std::vector<ChartPoint>& where, Positions2& uv, Positions3& output) {
   const Chart& chart = setup.chart;
-  const auto chart_point = [&](Index v) {
-    const Index i = setup.movable_slot[v];
-    return i >= 0 ? uv[i] : chart.uv[v];
-  };
   int held = 0;
   for (bool any = true; any;) {
     any = false;
     for (const Triangle& t : patch.triangles) {
-      const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
-      const Vec3 ns = (output[t[1]] - output[t[0]]).cross(output[t[2]] - output[t[0]]);
-      if (!slid_triangle_folds(chart_point(t[0]), chart_point(t[1]), chart_point(t[2]), ns, nf))
-        continue;
+      if (!slid_triangle_folds(chart, setup.movable_slot, uv, frame, output, t)) continue;
       for (Index v : t)
         if (const Index i = setup.movable_slot[v]; i >= 0 && output[v] != frame[v]) {
           uv[i] = chart.uv[v];
@@ -104,9 +95,7 @@ ElasticSlide elastic_written(const ElasticSetup& setup, const Patch& patch,
     if (w != 1) {
       uv[i] = chart.uv[v] + w * (uv[i] - chart.uv[v]);
       where[i] = locate_in_chart(chart, uv[i], where[i].triangle);
-      const Triangle& tri = chart.triangles[where[i].triangle];
-      p = where[i].weight[0] * points[tri[0]] + where[i].weight[1] * points[tri[1]] +
-          where[i].weight[2] * points[tri[2]];
+      p = facet_point(chart, points, where[i]);
     }
     if (!p.allFinite())
       throw Error(ErrorKind::Numeric, "vertex " + std::to_string(patch.vertices[v]) +

@@ -123,6 +123,18 @@ bool slid_triangle_folds(const Vec2& a, const Vec2& b, const Vec2& c, const Vec3
   return !(cross2(b - a, c - a) > 0) || turned_against(slid_normal, frame_normal);
 }
 
+bool slid_triangle_folds(const Chart& chart, const std::vector<Index>& movable_slot,
+                         const Positions2& uv, const Positions3& frame, const Positions3& slid,
+                         const Triangle& t) {
+  const auto chart_point = [&](Index v) {
+    const Index i = movable_slot[v];
+    return i >= 0 ? uv[i] : chart.uv[v];
+  };
+  const Vec3 nf = (frame[t[1]] - frame[t[0]]).cross(frame[t[2]] - frame[t[0]]);
+  const Vec3 ns = (slid[t[1]] - slid[t[0]]).cross(slid[t[2]] - slid[t[0]]);
+  return slid_triangle_folds(chart_point(t[0]), chart_point(t[1]), chart_point(t[2]), ns, nf);
+}
+
 double fold_root(const Chart& chart, const Positions2& node_uv, const Positions2& node_d, Index t) {
   const Triangle& tri = chart.triangles[t];
   const Vec2 d0 = node_d[tri[0]], d1 = node_d[tri[1]] - d0, d2 = node_d[tri[2]] - d0;

@@ -59,6 +59,13 @@ struct LineSearchResult {
 bool slid_triangle_folds(const Vec2& a, const Vec2& b, const Vec2& c, const Vec3& slid_normal,
                          const Vec3& frame_normal);
 
+/// The same test for patch triangle `t` of a written slide: a movable vertex's chart point from
+/// `uv` (by `movable_slot`), the others' their chart nodes; the slid normal from `slid`, the
+/// frame's from `frame` (local ids). Rule 11's weights and rule 12's window hold by it.
+bool slid_triangle_folds(const Chart& chart, const std::vector<Index>& movable_slot,
+                         const Positions2& uv, const Positions3& frame, const Positions3& slid,
+                         const Triangle& t);
+
 /// The smallest positive step along `node_d` (per chart node) at which chart triangle t's signed
 /// area vanishes (Smith & Schaefer 2015), infinite when none.
 double fold_root(const Chart& chart, const Positions2& node_uv, const Positions2& node_d, Index t);

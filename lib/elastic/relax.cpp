@@ -384,22 +384,25 @@ double elastic_energy(const ElasticSetup& setup, const Positions3& x, double sca
   return arap_energy(arap_triangles(setup), x, scale, normals);
 }
 
+void put_at_start(const ElasticSetup& setup, const Positions3& frame, ElasticResult& result) {
+  const size_t m = setup.movable.size();
+  result.uv.resize(m);
+  result.where.resize(m);
+  result.position.resize(m);
+  for (size_t i = 0; i < m; ++i) {
+    const Index v = setup.movable[i];
+    result.uv[i] = setup.chart.uv[v];
+    result.where[i] = at_node(setup.chart, v);
+    result.position[i] = frame[v];
+  }
+}
+
 ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
                           const ElasticOptions& options) {
   const Chart& chart = setup.chart;
   const Index m = static_cast<Index>(setup.movable.size());
   ElasticResult result;
-  result.uv.resize(m);
-  result.where.resize(m);
-  result.position.resize(m);
-  // The start: every movable vertex exactly at its frame position, on a triangle around it.
-  const auto at_start = [&](Index i) {
-    const Index v = setup.movable[i];
-    result.uv[i] = chart.uv[v];
-    result.where[i] = at_node(chart, v);
-    result.position[i] = frame[v];
-  };
-  for (Index i = 0; i < m; ++i) at_start(i);
+  put_at_start(setup, frame, result);
   if (m == 0) return result;
   const FrameSurface surface =
       frame_surface(chart, frame, setup.blend.edges.empty() ? nullptr : &setup.blend);
@@ -429,7 +432,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
   // nothing comes back unchanged.
   result.energy_after = arap_energy(mesh, slid.x, s, surface.normals);
   if (!(result.energy_after <= result.energy_before)) {
-    for (Index i = 0; i < m; ++i) at_start(i);
+    put_at_start(setup, frame, result);
     result.energy_after = result.energy_before;
     result.stop = ElasticStop::NoDescent;
     ElasticResult scratch;

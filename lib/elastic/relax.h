@@ -122,6 +122,10 @@ struct ElasticResult {
   ElasticStop stop = ElasticStop::Converged;
 };
 
+/// Puts every movable vertex of `result` at its start: its own chart node, exactly at its frame
+/// position (`frame`: local ids), on a patch triangle around it. Nothing else of `result` changes.
+void put_at_start(const ElasticSetup& setup, const Positions3& frame, ElasticResult& result);
+
 /// Relaxes one patch in one frame. `frame_points` holds the frame's positions of the patch's
 /// vertices (local ids). Pure: depends on (setup, frame_points, options) only.
 /// Guarantees: every output on one frame triangle (barycentrics in [0, 1]); no slid triangle

@@ -49,9 +49,12 @@ Mat32 surface_jacobian(const FrameSurface& surface, Index t) {
 }
 
 Vec3 surface_point(const FrameSurface& surface, const ChartPoint& p) {
-  const Triangle& tri = surface.chart.triangles[p.triangle];
-  return p.weight[0] * surface.frame[tri[0]] + p.weight[1] * surface.frame[tri[1]] +
-         p.weight[2] * surface.frame[tri[2]];
+  return facet_point(surface.chart, surface.frame, p);
+}
+
+Vec3 facet_point(const Chart& chart, const Positions3& frame, const ChartPoint& p) {
+  const Triangle& tri = chart.triangles[p.triangle];
+  return p.weight[0] * frame[tri[0]] + p.weight[1] * frame[tri[1]] + p.weight[2] * frame[tri[2]];
 }
 
 Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u) {

@@ -40,6 +40,10 @@ Mat32 surface_jacobian(const FrameSurface& surface, Index t);
 /// Phi at a chart point: on its frame triangle.
 Vec3 surface_point(const FrameSurface& surface, const ChartPoint& p);
 
+/// The same point from the chart and the frame's positions alone (local ids), without a
+/// FrameSurface: where a slid vertex is written.
+Vec3 facet_point(const Chart& chart, const Positions3& frame, const ChartPoint& p);
+
 /// Where the relaxation sees a point at chart point u (on `where`): on the blended surface, or on
 /// Phi without a blend.
 Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u);

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include <Eigen/Geometry>
-
 #include "core/check.h"
 #include "elastic/line_search.h"
 #include "elastic/surface_map.h"
@@ -19,9 +17,7 @@ void place(const ElasticSetup& setup, const Positions3& frame, ElasticResult& r,
            const Vec2& u) {
   r.uv[i] = u;
   r.where[i] = locate_in_chart(setup.chart, u, r.where[i].triangle);
-  const Triangle& t = setup.chart.triangles[r.where[i].triangle];
-  const std::array<double, 3>& w = r.where[i].weight;
-  r.position[i] = w[0] * frame[t[0]] + w[1] * frame[t[1]] + w[2] * frame[t[2]];
+  r.position[i] = facet_point(setup.chart, frame, r.where[i]);
 }
 
 // The patch's positions with the movable vertices at r's.
@@ -49,13 +45,7 @@ int return_folded(const ElasticSetup& setup, const Positions3& frame, const Elas
     std::vector<char> fold_corner(setup.movable.size(), 0);
     for (Index t = 0; t < chart.patch_triangle_count; ++t) {
       const Triangle& tri = chart.triangles[t];
-      const auto uv = [&](Index v) {
-        const Index i = setup.movable_slot[v];
-        return i >= 0 ? r.uv[i] : chart.uv[v];
-      };
-      const Vec3 nf = (frame[tri[1]] - frame[tri[0]]).cross(frame[tri[2]] - frame[tri[0]]);
-      const Vec3 ns = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]);
-      if (!slid_triangle_folds(uv(tri[0]), uv(tri[1]), uv(tri[2]), ns, nf)) continue;
+      if (!slid_triangle_folds(chart, setup.movable_slot, r.uv, frame, x, tri)) continue;
       for (Index v : tri)
         if (const Index i = setup.movable_slot[v]; i >= 0 && quarters[i] < kQuarters)
           fold_corner[i] = 1;

@@ -7,7 +7,6 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
-#include "elastic/surface_map.h"
 #include "elastic/window_mean.h"
 #include "mesh/measures.h"
 
@@ -158,13 +157,7 @@ FrameRelaxations relax_frame(const BindSetup& setup, std::span<const Vec3> frame
       ElasticResult& r = out.patches[p] = relax_patch(elastic, points, method.options);
       out.seconds[p] = seconds_since(t0);
       // A frame at rest is written unchanged (slide_and_gather): its slide is none.
-      if (at_rest(patch, frame, setup.bind_positions))
-        for (size_t i = 0; i < elastic.movable.size(); ++i) {
-          const Index v = elastic.movable[i];
-          r.uv[i] = elastic.chart.uv[v];
-          r.where[i] = at_node(elastic.chart, v);
-          r.position[i] = points[v];
-        }
+      if (at_rest(patch, frame, setup.bind_positions)) put_at_start(elastic, points, r);
     } catch (const Error& e) {
       throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
     }
