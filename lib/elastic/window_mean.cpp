@@ -9,8 +9,12 @@
 namespace skinslide {
 namespace {
 
-// Rule 12's steps back towards a vertex's own relaxed point: quarters of the way.
-constexpr int kQuarters = 4;
+// Rule 12's way back is found by bisection to 2^-30 of the way: far below a written digit.
+constexpr int kBisections = 30;
+// Rounds in which a folded triangle's corners go back only as far as it needs; a triangle still
+// folded after them sends its moving corners the whole way (where all of its are, it is its own
+// relaxation's, which does not fold), so the loop ends.
+constexpr int kRounds = 8;
 
 // Puts movable vertex i at chart point u, on the frame's facets.
 void place(const ElasticSetup& setup, const Positions3& frame, ElasticResult& r, size_t i,
@@ -18,6 +22,19 @@ void place(const ElasticSetup& setup, const Positions3& frame, ElasticResult& r,
   r.uv[i] = u;
   r.where[i] = locate_in_chart(setup.chart, u, r.where[i].triangle);
   r.position[i] = facet_point(setup.chart, frame, r.where[i]);
+}
+
+// Movable vertex i a share `back` of the way from the mean to its own relaxed point (at the
+// whole way exactly its own).
+void place_back(const ElasticSetup& setup, const Positions3& frame, const ElasticResult& own,
+                const Positions2& mean, double back, size_t i, ElasticResult& r) {
+  if (back >= 1) {
+    r.uv[i] = own.uv[i];
+    r.where[i] = own.where[i];
+    r.position[i] = own.position[i];
+  } else {
+    place(setup, frame, r, i, mean[i] + back * (own.uv[i] - mean[i]));
+  }
 }
 
 // The patch's positions with the movable vertices at r's.
@@ -28,43 +45,59 @@ Positions3 written_positions(const ElasticSetup& setup, const Positions3& frame,
   return x;
 }
 
+// The share of the way back, at least `back`'s, from which slid triangle `tri` no longer folds
+// when its moving corners go back that far: bisected between the state given (folded) and the
+// whole way (unfolded). The share grows from 0 as a fold starts, so the written slide stays a
+// continuous function of the frames where the shares are below 1.
+double share_unfolding(const ElasticSetup& setup, const Positions3& frame, const ElasticResult& own,
+                       const Positions2& mean, const std::vector<double>& back, const Triangle& tri,
+                       ElasticResult& r, Positions3& x) {
+  const auto folds_at = [&](double share) {
+    for (Index v : tri)
+      if (const Index i = setup.movable_slot[v]; i >= 0) {
+        place_back(setup, frame, own, mean, std::max(back[i], share), i, r);
+        x[v] = r.position[i];
+      }
+    return slid_triangle_folds(setup.chart, setup.movable_slot, r.uv, frame, x, tri);
+  };
+  double folded = 0, unfolded = 1;
+  for (int k = 0; k < kBisections; ++k) {
+    const double mid = 0.5 * (folded + unfolded);
+    (folds_at(mid) ? folded : unfolded) = mid;
+  }
+  folds_at(0);  // the corners back where the state given has them
+  return unfolded;
+}
+
 // Rule 12: the moving corners of slid triangles that fold go back towards their own relaxed
-// points by a quarter of the way at a time, until none folds; at the whole way a corner is at
-// its own point, and where all of a triangle's are, it does not fold (relax.h's guarantees).
-// Returns how many vertices moved back. A quarter at a time keeps what a corner gives up of the
-// mean small: a corner sent back whole jumps by the jitter the window takes out (CesiumMan's
-// knees: jitter max 0.29 bind edges a frame sent back whole, 0.15 by quarters, 0.084 unchecked
-// with 3 triangles turned).
+// points, each only as far as its triangles need, until none folds. Returns how many vertices
+// moved back. Going back only as far as needed keeps the slide continuous where a fold starts:
+// in fixed steps a corner jumps by a step's share of the jitter the window takes out (a quarter
+// of the way at a time gave CesiumMan's knees a jitter max of 0.15 bind edges a frame, the whole
+// way 0.29).
 int return_folded(const ElasticSetup& setup, const Positions3& frame, const ElasticResult& own,
                   const Positions2& mean, ElasticResult& r) {
   const Chart& chart = setup.chart;
-  std::vector<int> quarters(setup.movable.size(), 0);  // how far back, in quarters of the way
-  for (bool any = true; any;) {
-    any = false;
-    const Positions3 x = written_positions(setup, frame, r);
-    std::vector<char> fold_corner(setup.movable.size(), 0);
+  std::vector<double> back(setup.movable.size(), 0.0);  // share of the way back
+  for (int round = 0;; ++round) {
+    Positions3 x = written_positions(setup, frame, r);
+    std::vector<double> raised = back;
+    bool any = false;
     for (Index t = 0; t < chart.patch_triangle_count; ++t) {
       const Triangle& tri = chart.triangles[t];
       if (!slid_triangle_folds(chart, setup.movable_slot, r.uv, frame, x, tri)) continue;
-      for (Index v : tri)
-        if (const Index i = setup.movable_slot[v]; i >= 0 && quarters[i] < kQuarters)
-          fold_corner[i] = 1;
-    }
-    for (size_t i = 0; i < quarters.size(); ++i) {
-      if (!fold_corner[i]) continue;
       any = true;
-      if (++quarters[i] == kQuarters) {
-        r.uv[i] = own.uv[i];
-        r.where[i] = own.where[i];
-        r.position[i] = own.position[i];
-      } else {
-        const double back = static_cast<double>(quarters[i]) / kQuarters;
-        place(setup, frame, r, i, mean[i] + back * (own.uv[i] - mean[i]));
-      }
+      const double share =
+          round < kRounds ? share_unfolding(setup, frame, own, mean, back, tri, r, x) : 1.0;
+      for (Index v : tri)
+        if (const Index i = setup.movable_slot[v]; i >= 0) raised[i] = std::max(raised[i], share);
     }
+    if (!any) break;
+    back = std::move(raised);
+    for (size_t i = 0; i < back.size(); ++i)
+      if (back[i] > 0) place_back(setup, frame, own, mean, back[i], i, r);
   }
-  return static_cast<int>(
-      std::count_if(quarters.begin(), quarters.end(), [](int q) { return q > 0; }));
+  return static_cast<int>(std::count_if(back.begin(), back.end(), [](double b) { return b > 0; }));
 }
 
 }  // namespace

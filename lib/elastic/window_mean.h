@@ -27,11 +27,11 @@ Positions2 chart_point_mean(const std::vector<WindowFrame>& frames);
 /// `own`, this frame's relaxation of the patch, with the chart points `mean` written instead, on
 /// this frame's facets (`frame`: its positions of the patch's vertices, local ids). A moving corner
 /// of a slid triangle that would fold in the chart or face against its frame triangle goes back
-/// to its own relaxed point, until none does (own's has none: relax.h's guarantees); when the
-/// mean's energy would be above the frame's, every vertex goes back; a frame at rest (rule 4) is
-/// returned as it is. The stop, the steps and the
-/// measure stay own's; energy_after is what is written; window_returned counts the vertices sent
-/// back.
+/// towards its own relaxed point, as far as its triangles need and no further, until none folds
+/// (at the whole way a triangle is own's, which has none: relax.h's guarantees); when the mean's
+/// energy would be above the frame's, every vertex goes back; a frame at rest (rule 4) is
+/// returned as it is. The stop, the steps and the measure stay own's; energy_after is what is
+/// written; window_returned counts the vertices sent back, wholly or in part.
 ElasticResult window_mean(const ElasticSetup& setup, const Positions3& frame,
                           const ElasticResult& own, const Positions2& mean);
 

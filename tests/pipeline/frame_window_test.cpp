@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "elastic/elastic_method.h"
+#include "elastic/line_search.h"
 #include "elastic/window_mean.h"
 #include "helpers/samples.h"
 #include "mesh/measures.h"
@@ -168,6 +169,49 @@ TEST(FrameWindow, AWindowedFrameKeepsEveryPromiseOfAFrameAlone) {
       EXPECT_LE(test::distance_to_patch(patch, frame, out[v]), 1e-12 * diag) << "on the surface";
     }
   }
+}
+
+TEST(FrameWindow, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
+  const ElbowRun run;
+  const std::size_t f = 2;
+  const Patch& patch = run.setup.patches[0];
+  Positions3 points(patch.vertices.size());
+  for (size_t i = 0; i < points.size(); ++i) points[i] = run.sample.frames[f][patch.vertices[i]];
+  const ElasticSetup& elastic = *test::elastic(run.setup).patches[0];
+  const ElasticResult& own = run.relaxed[f].patches[0];
+  const Positions2 neighbours = chart_point_mean(
+      {{&run.relaxed[1].patches[0].uv, 0.5}, {&run.relaxed[3].patches[0].uv, 0.5}});
+  // Corner a of one triangle driven in small steps across its opposite edge: the triangle folds
+  // part of the way along, and the written points must follow the mean without a jump.
+  const Triangle t = elastic.chart.triangles[elastic.chart.patch_triangle_count / 2];
+  const Index a = elastic.movable_slot[t[0]], b = elastic.movable_slot[t[1]];
+  ASSERT_GE(a, 0);
+  ASSERT_GE(b, 0);
+  const Vec2 from = neighbours[a], to = neighbours[b] + 0.5 * (neighbours[b] - neighbours[a]);
+  constexpr int kSteps = 400;
+  const double step = (to - from).norm() / kSteps;
+  Positions2 mean = neighbours;
+  ElasticResult before = window_mean(elastic, points, own, mean);
+  EXPECT_EQ(before.window_returned, 0) << "the neighbours' mean alone folds nothing";
+  int returned_steps = 0;
+  for (int k = 1; k <= kSteps; ++k) {
+    mean[a] = from + (static_cast<double>(k) / kSteps) * (to - from);
+    const ElasticResult r = window_mean(elastic, points, own, mean);
+    ASSERT_LE(r.energy_after, own.energy_before);
+    if (r.window_returned > 0) ++returned_steps;
+    for (size_t i = 0; i < r.uv.size(); ++i)
+      EXPECT_LE((r.uv[i] - before.uv[i]).norm(), 2 * step)
+          << "vertex " << i << " jumps at step " << k << " of " << kSteps;
+    for (Index u = 0; u < elastic.chart.patch_triangle_count; ++u) {
+      Positions3 x = points;
+      for (size_t i = 0; i < r.uv.size(); ++i) x[elastic.movable[i]] = r.position[i];
+      ASSERT_FALSE(slid_triangle_folds(elastic.chart, elastic.movable_slot, r.uv, points, x,
+                                       elastic.chart.triangles[u]))
+          << "triangle " << u << " at step " << k;
+    }
+    before = r;
+  }
+  EXPECT_GT(returned_steps, kSteps / 4) << "the fold is met on the way";
 }
 
 TEST(FrameWindow, ARigidCopyOfTheBindAmongMovingNeighboursComesBackAsItIs) {
