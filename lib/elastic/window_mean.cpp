@@ -11,6 +11,9 @@ namespace {
 
 // Rule 12's way back is found by bisection to 2^-30 of the way: far below a written digit.
 constexpr int kBisections = 30;
+// A patch whose mean is above the frame's energy goes back by a share bisected to 2^-16: a
+// 65536th of the way between two slides a fraction of an edge apart, each trial a whole patch.
+constexpr int kEnergyBisections = 16;
 // Rounds in which a folded triangle's corners go back only as far as it needs; a triangle still
 // folded after them sends its moving corners the whole way (where all of its are, it is its own
 // relaxation's, which does not fold), so the loop ends.
@@ -100,6 +103,24 @@ int return_folded(const ElasticSetup& setup, const Positions3& frame, const Elas
   return static_cast<int>(std::count_if(back.begin(), back.end(), [](double b) { return b > 0; }));
 }
 
+// The chart points a share of the way from `mean` towards own's.
+Positions2 towards_own(const Positions2& mean, const ElasticResult& own, double share) {
+  Positions2 out(mean.size());
+  for (size_t i = 0; i < mean.size(); ++i) out[i] = mean[i] + share * (own.uv[i] - mean[i]);
+  return out;
+}
+
+// Own's relaxation with the chart points `target` written instead, on the frame's facets, its
+// folded triangles' corners gone back as far as they need, and the energy of what is written.
+ElasticResult written_at(const ElasticSetup& setup, const Positions3& frame,
+                         const ElasticResult& own, const Positions2& target) {
+  ElasticResult r = own;
+  for (size_t i = 0; i < target.size(); ++i) place(setup, frame, r, i, target[i]);
+  r.window_returned = return_folded(setup, frame, own, target, r);
+  r.energy_after = elastic_energy(setup, written_positions(setup, frame, r), own.scale);
+  return r;
+}
+
 }  // namespace
 
 Positions2 chart_point_mean(const std::vector<WindowFrame>& frames) {
@@ -118,13 +139,25 @@ ElasticResult window_mean(const ElasticSetup& setup, const Positions3& frame,
   // The bind up to a rigid motion and a scale comes back as it is (rule 4), window or not: its
   // neighbours' slides would move it off its minimum, which has no energy.
   if (own.stop == ElasticStop::AtRest) return own;
-  ElasticResult r = own;
-  for (size_t i = 0; i < mean.size(); ++i) place(setup, frame, r, i, mean[i]);
-  r.window_returned = return_folded(setup, frame, own, mean, r);
-  r.energy_after = elastic_energy(setup, written_positions(setup, frame, r), own.scale);
-  // The relaxation's promise (never above the frame's energy) holds for what is written.
+  ElasticResult r = written_at(setup, frame, own, mean);
+  // The relaxation's promise (never above the frame's energy) holds for what is written: the
+  // whole patch goes back towards its own slide as far as the energy needs, bisected between
+  // the mean (above) and its own slide (below). Sent back whole, a patch jumped by the very
+  // jitter the window takes out wherever the frames in a window differ too much to share a mean
+  // (CesiumMan's knees with --window 8: jitter max 0.25 bind edges a frame).
   if (!(r.energy_after <= own.energy_before)) {
+    double above = 0, below = 1;
     r = own;
+    for (int k = 0; k < kEnergyBisections; ++k) {
+      const double share = 0.5 * (above + below);
+      ElasticResult m = written_at(setup, frame, own, towards_own(mean, own, share));
+      if (m.energy_after <= own.energy_before) {
+        below = share;
+        r = std::move(m);
+      } else {
+        above = share;
+      }
+    }
     r.window_returned = static_cast<int>(own.uv.size());
   }
   return r;

@@ -29,7 +29,8 @@ Positions2 chart_point_mean(const std::vector<WindowFrame>& frames);
 /// of a slid triangle that would fold in the chart or face against its frame triangle goes back
 /// towards its own relaxed point, as far as its triangles need and no further, until none folds
 /// (at the whole way a triangle is own's, which has none: relax.h's guarantees); when the mean's
-/// energy would be above the frame's, every vertex goes back; a frame at rest (rule 4) is
+/// energy would be above the frame's, the whole patch goes back towards own's as far as the
+/// energy needs; a frame at rest (rule 4) is
 /// returned as it is. The stop, the steps and the measure stay own's; energy_after is what is
 /// written; window_returned counts the vertices sent back, wholly or in part.
 ElasticResult window_mean(const ElasticSetup& setup, const Positions3& frame,

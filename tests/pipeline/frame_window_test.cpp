@@ -214,6 +214,40 @@ TEST(FrameWindow, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
   EXPECT_GT(returned_steps, kSteps / 4) << "the fold is met on the way";
 }
 
+TEST(FrameWindow, AMeanRisingAboveTheFramesEnergyIsLeftByNoJump) {
+  const ElbowRun run;
+  const std::size_t f = 2;
+  const Patch& patch = run.setup.patches[0];
+  Positions3 points(patch.vertices.size());
+  for (size_t i = 0; i < points.size(); ++i) points[i] = run.sample.frames[f][patch.vertices[i]];
+  const ElasticSetup& elastic = *test::elastic(run.setup).patches[0];
+  const ElasticResult& own = run.relaxed[f].patches[0];
+  // The mean driven away from the frame's own slide along a neighbour's difference, until its
+  // energy is above the frame's: the patch must then go back towards its own slide by as much
+  // as the energy needs, not all at once.
+  const Positions2& neighbour = run.relaxed[0].patches[0].uv;
+  constexpr int kSteps = 200;
+  constexpr double kFar = 6;  // how many neighbour differences the mean ends away
+  Positions2 mean = own.uv;
+  ElasticResult before = window_mean(elastic, points, own, mean);
+  int above_steps = 0;
+  for (int k = 1; k <= kSteps; ++k) {
+    const double reach = kFar * k / kSteps;
+    for (size_t i = 0; i < mean.size(); ++i)
+      mean[i] = own.uv[i] + reach * (neighbour[i] - own.uv[i]);
+    const ElasticResult r = window_mean(elastic, points, own, mean);
+    ASSERT_LE(r.energy_after, own.energy_before) << "step " << k;
+    if (r.window_returned == static_cast<int>(own.uv.size())) ++above_steps;
+    for (size_t i = 0; i < r.uv.size(); ++i) {
+      const double step = kFar / kSteps * (neighbour[i] - own.uv[i]).norm();
+      EXPECT_LE((r.uv[i] - before.uv[i]).norm(), 2 * step + 1e-9)
+          << "vertex " << i << " jumps at step " << k << " of " << kSteps;
+    }
+    before = r;
+  }
+  EXPECT_GT(above_steps, kSteps / 4) << "the mean rises above the frame's energy on the way";
+}
+
 TEST(FrameWindow, ARigidCopyOfTheBindAmongMovingNeighboursComesBackAsItIs) {
   const ElbowRun run;
   Positions3 rigid = run.sample.frames[0];
