@@ -174,20 +174,8 @@ void add_method(CLI::App& app, CliOptions& o) {
   add_table_option(app, method_option(), o.run, o, method);
   add_method_options(app, o.elastic, o, method);
   add_method_options(app, o.paper, o, method);
-  // A run's option, not a frame's (pipeline/frame_window.h): not in the method's table, which the
-  // Python module's one-frame Slider takes too.
-  CLI::Option* window =
-      app.add_option("--window", o.run.window,
-                     "Elastic: write each frame's slide as the mean of its own and its N "
-                     "neighbours' on each side in the sequence given (frame numbers; in the "
-                     "chart, weights N+1-|k|): 2.9-13x less jitter in slow motion with 4. "
-                     "A frame then depends on its neighbours: give a farm chunk the whole "
-                     "sequence and its range with --frames")
-          ->type_name("N")
-          ->capture_default_str()
-          ->check(a_number())
-          ->check(CLI::Range(0, 100))
-          ->group(method);
+  // A run's option, not a frame's (pipeline/run_options.h window_option).
+  CLI::Option* window = add_table_option(app, window_option(), o.run, o, method)->type_name("N");
   o.method_only.push_back({window, method_name(ElasticOptions{})});
 }
 

@@ -1,8 +1,13 @@
 #include "skinslide.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <numeric>
+#include <optional>
 #include <string>
+#include <thread>
 
 #include "core/number_format.h"
 
@@ -81,6 +86,65 @@ void check_span(std::span<const double> xyz, Index vertex_count, const char* wha
                                       " vertices (x y z each)");
 }
 
+// A frame and its output: #V x 3 each, the frame finite.
+void check_frame(const BindSetup& setup, std::span<const double> frame, std::span<const double> out,
+                 const char* frame_name, const char* out_name) {
+  check_span(frame, setup.vertex_count, frame_name);
+  check_span(out, setup.vertex_count, out_name);
+  for (size_t k = 0; k < frame.size(); ++k)
+    if (!std::isfinite(frame[k]))
+      throw Error(ErrorKind::Input,
+                  std::string(frame_name) + ": vertex " + std::to_string(k / 3) + " is not finite");
+}
+
+std::string frame_name(size_t k) { return "frame " + std::to_string(k); }
+
+// `run`'s result; its Error, if any, with frame k named.
+template <class Run>
+auto labelled(size_t k, Run run) {
+  try {
+    return run();
+  } catch (const Error& e) {
+    throw Error(e.kind(), frame_name(k) + ": " + e.what());
+  }
+}
+
+// slide_sequence's arguments: the window's range and method, one output a frame, each frame and
+// output as slide() checks them.
+void check_sequence(const BindSetup& setup, std::span<const std::span<const double>> frames,
+                    std::span<const std::span<double>> outs, int window) {
+  if (window < 0 || window > kMaxWindow)
+    throw Error(ErrorKind::Usage, "window " + std::to_string(window) + " is out of its range [0, " +
+                                      std::to_string(kMaxWindow) + "]");
+  if (window > 0 && !std::holds_alternative<ElasticMethod>(setup.method))
+    throw Error(ErrorKind::Usage, "a window is the elastic method's; this set-up slides by the " +
+                                      method_name(method_options(setup.method)) + " method");
+  if (frames.size() != outs.size())
+    throw Error(ErrorKind::Input, std::to_string(frames.size()) + " frames and " +
+                                      std::to_string(outs.size()) + " outputs");
+  for (size_t k = 0; k < frames.size(); ++k)
+    check_frame(setup, frames[k], outs[k], frame_name(k).c_str(),
+                ("output " + std::to_string(k)).c_str());
+}
+
+// A slid frame written into `out`: the frame, with every slid vertex moved. Returns its reports.
+std::vector<PatchFrameReport> written(FrameResult result, std::span<const double> frame,
+                                      std::span<double> out) {
+  std::copy(frame.begin(), frame.end(), out.begin());
+  for (size_t k = 0; k < result.slid.vertex.size(); ++k) {
+    const Vec3& p = result.slid.position[k];
+    double* xyz = out.data() + 3 * static_cast<size_t>(result.slid.vertex[k]);
+    // A vertex the slide left where the frame has it keeps the frame's bits (a -0 stays -0), as
+    // the command's OBJ writer keeps its text: the module gives the command's bits.
+    if (p.x() == xyz[0] && p.y() == xyz[1] && p.z() == xyz[2]) continue;
+    xyz[0] = p.x();
+    xyz[1] = p.y();
+    xyz[2] = p.z();
+  }
+  for (PatchFrameReport& r : result.patches) r.frame_net = {};  // the nets are dumps' business
+  return std::move(result.patches);
+}
+
 }  // namespace
 
 void check_options(const SlideOptions& options) {
@@ -101,25 +165,55 @@ BindSetup set_up(const Bind& bind, const std::vector<std::vector<Index>>& patche
 
 std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const double> frame,
                                     std::span<double> out, bool edge_spread) {
-  check_span(frame, setup.vertex_count, "the frame");
-  check_span(out, setup.vertex_count, "the output");
-  for (size_t k = 0; k < frame.size(); ++k)
-    if (!std::isfinite(frame[k]))
-      throw Error(ErrorKind::Input, "frame vertex " + std::to_string(k / 3) + " is not finite");
-  FrameResult result = slide_frame(setup, as_points(frame), {.edge_spread = edge_spread});
-  std::copy(frame.begin(), frame.end(), out.begin());
-  for (size_t k = 0; k < result.slid.vertex.size(); ++k) {
-    const Vec3& p = result.slid.position[k];
-    double* xyz = out.data() + 3 * static_cast<size_t>(result.slid.vertex[k]);
-    // A vertex the slide left where the frame has it keeps the frame's bits (a -0 stays -0), as
-    // the command's OBJ writer keeps its text: the module gives the command's bits.
-    if (p.x() == xyz[0] && p.y() == xyz[1] && p.z() == xyz[2]) continue;
-    xyz[0] = p.x();
-    xyz[1] = p.y();
-    xyz[2] = p.z();
-  }
-  for (PatchFrameReport& r : result.patches) r.frame_net = {};  // the nets are dumps' business
-  return std::move(result.patches);
+  check_frame(setup, frame, out, "the frame", "the output");
+  return written(slide_frame(setup, as_points(frame), {.edge_spread = edge_spread}), frame, out);
+}
+
+std::vector<std::vector<PatchFrameReport>> slide_sequence(
+    const BindSetup& setup, std::span<const std::span<const double>> frames,
+    std::span<const std::span<double>> outs, int window, bool edge_spread, unsigned threads) {
+  check_sequence(setup, frames, outs, window);
+  const size_t count = frames.size();
+  std::vector<size_t> all(count);
+  std::iota(all.begin(), all.end(), size_t{0});
+  std::optional<RelaxationStore> store;
+  if (window > 0)
+    store.emplace(ordered_window_plan(window, count), all, [&](size_t k) {
+      return labelled(k, [&] { return relax_frame(setup, as_points(frames[k])); });
+    });
+  std::vector<std::vector<PatchFrameReport>> reports(count);
+  std::vector<std::exception_ptr> errors(count);
+  const FrameExtras extras{.edge_spread = edge_spread};
+  const auto slide_one = [&](size_t k) {
+    try {
+      std::optional<WindowedFrame> mean;
+      std::vector<RelaxationStore::Member> members;
+      if (store) {
+        members = store->window(k);
+        rethrow_window_error(members, k, frame_name(k));  // relaxations' errors are labelled
+        mean = windowed_frame(members, k);
+      }
+      reports[k] = labelled(k, [&] {
+        return written(slide_frame(setup, as_points(frames[k]), extras, mean ? &*mean : nullptr),
+                       frames[k], outs[k]);
+      });
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+    if (store) store->done(k);
+  };
+  std::atomic<size_t> next{0};
+  const auto worker = [&] {
+    for (size_t k; (k = next++) < count;) slide_one(k);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min<size_t>(std::max(threads, 1u), count); ++t)
+    pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : errors)  // the first in the sequence, whatever the threads
+    if (e) std::rethrow_exception(e);
+  return reports;
 }
 
 }  // namespace skinslide

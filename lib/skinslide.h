@@ -24,6 +24,7 @@
 #include "io/atomic_write.h"
 #include "io/cache_chunks.h"
 #include "pipeline/bind_setup.h"
+#include "pipeline/frame_window.h"
 #include "pipeline/method.h"
 #include "pipeline/options.h"
 #include "pipeline/run.h"
@@ -65,5 +66,20 @@ void check_options(const SlideOptions& options);
 /// \throw Error(Input) when `frame` or `out` is not #V x 3; Error(Numeric) when a slide fails.
 std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const double> frame,
                                     std::span<double> out, bool edge_spread = false);
+
+/// Slides a sequence of frames: frames[k] (#V x 3 each) is the sequence's k-th frame, outs[k]
+/// receives it slid. With `window` N > 0 (the elastic method's --window, README "Slow motion";
+/// lib/elastic/README.md rule 12) each frame is written at the mean of its own and its N
+/// neighbours' relaxations on each side, one-sided where the sequence ends: the bits the command
+/// line writes for the same frames in the same order. With 0 each frame is slide()'s. Frames are
+/// relaxed and written on `threads` threads (each relaxed once, kept while a window needs it);
+/// the result is the same for any count. Returns each frame's reports, as slide().
+/// \throw Error(Usage) for a window out of [0, kMaxWindow] or a window with the paper method;
+///        Error(Input) as slide(), naming the frame; Error(Numeric) naming the frame that failed
+///        (the first in the sequence), or the neighbour whose relaxation a window needed.
+std::vector<std::vector<PatchFrameReport>> slide_sequence(
+    const BindSetup& setup, std::span<const std::span<const double>> frames,
+    std::span<const std::span<double>> outs, int window, bool edge_spread = false,
+    unsigned threads = 1);
 
 }  // namespace skinslide

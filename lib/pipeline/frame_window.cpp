@@ -122,6 +122,18 @@ void RelaxationStore::done(std::size_t frame) {
   }
 }
 
+void rethrow_window_error(const std::vector<RelaxationStore::Member>& window, std::size_t frame,
+                          const std::string& label) {
+  for (const RelaxationStore::Member& m : window)
+    if (m.error && m.frame == frame) std::rethrow_exception(m.error);
+  for (const RelaxationStore::Member& m : window)
+    if (m.error) try {
+        std::rethrow_exception(m.error);
+      } catch (const Error& e) {
+        throw Error(e.kind(), label + ": its --window neighbour " + e.what());
+      }
+}
+
 WindowedFrame windowed_frame(const std::vector<RelaxationStore::Member>& window,
                              std::size_t frame) {
   WindowedFrame out;

@@ -87,6 +87,12 @@ class RelaxationStore {
   std::map<std::size_t, Entry> entries_;
 };
 
+/// Rethrows the first error of frame `frame`'s window, if any: the frame's own as it is (it fails
+/// as it would alone), else a neighbour's as "LABEL: its --window neighbour ERROR" (`label` names
+/// the frame): the window's mean without it would be another one.
+void rethrow_window_error(const std::vector<RelaxationStore::Member>& window, std::size_t frame,
+                          const std::string& label);
+
 /// The window's mean of chart points, patch by patch (window_mean.h chart_point_mean), and the
 /// chosen frame's own relaxations: what slide_frame writes. `own` is the member whose frame is
 /// `frame`. \pre no member has an error.

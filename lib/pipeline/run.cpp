@@ -56,16 +56,7 @@ FrameOutcome run_chosen_frame(const BindSetup& setup, const MeshFile& bind,
                               CacheSlot slot, ReportFrame* record, RelaxationStore* store) {
   if (!store) return run_source_frame(setup, bind, source, o, i, slot, record);
   const std::vector<RelaxationStore::Member> window = store->window(i);
-  // A frame that cannot be relaxed fails as it would alone; a neighbour that cannot, every frame
-  // whose window holds it, naming both (the window's mean would be another one).
-  for (const RelaxationStore::Member& m : window)
-    if (m.error && m.frame == i) std::rethrow_exception(m.error);
-  for (const RelaxationStore::Member& m : window)
-    if (m.error) try {
-        std::rethrow_exception(m.error);
-      } catch (const Error& e) {
-        throw Error(e.kind(), frame_label(o, source, i) + ": its --window neighbour " + e.what());
-      }
+  rethrow_window_error(window, i, frame_label(o, source, i));
   const WindowedFrame windowed = windowed_frame(window, i);
   return run_source_frame(setup, bind, source, o, i, slot, record, &windowed);
 }

@@ -18,6 +18,10 @@
 
 namespace skinslide {
 
+/// The widest --window: 100 frames on each side, four seconds of motion either way at 25 frames
+/// a second; a slide that still jumps at that width is not the jitter a window smooths.
+constexpr int kMaxWindow = 100;
+
 /// What a run reads, writes and how it slides: the command line's options (README "Options") as
 /// plain data, after the command line's own checks (conflicting options, ranges). Paths as given.
 struct RunOptions {
@@ -83,5 +87,10 @@ const Option<RunOptions>& strength_option();
 
 /// --method: which method slides, by its name (RunOptions::slide's alternative, with defaults).
 const Option<RunOptions>& method_option();
+
+/// --window: RunOptions::window, 0..kMaxWindow. A run's option, not a frame's (frame_window.h):
+/// not in the table, whose options the Python module's one-frame Slider takes; its
+/// slide_sequence takes this one (skinslide.h), the add-on's property is made from it.
+const Option<RunOptions>& window_option();
 
 }  // namespace skinslide

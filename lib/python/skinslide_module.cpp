@@ -306,6 +306,31 @@ class Slider {
     return py::make_tuple(out, frame_report(report, edge_spread));
   }
 
+  // A sequence's frames, each (vertices, 3); with a window, each written at the mean of its own
+  // and its neighbours' relaxations (skinslide.h slide_sequence).
+  py::tuple slide_sequence(const py::handle& frames, int window, bool edge_spread,
+                           unsigned threads) const {
+    std::vector<DoubleArray> in;
+    for (const py::handle f : frames) in.push_back(points(f, "each frame"));
+    const auto count = static_cast<py::ssize_t>(in.size());
+    const auto vertices = static_cast<py::ssize_t>(setup_->vertex_count);
+    DoubleArray out({count, vertices, py::ssize_t{3}});
+    std::vector<std::span<const double>> xyz;
+    std::vector<std::span<double>> result;
+    for (py::ssize_t k = 0; k < count; ++k) {
+      xyz.emplace_back(in[k].data(), static_cast<size_t>(in[k].size()));
+      result.emplace_back(out.mutable_data(k), static_cast<size_t>(vertices * 3));
+    }
+    std::vector<std::vector<PatchFrameReport>> reports;
+    {
+      py::gil_scoped_release released;
+      reports = skinslide::slide_sequence(*setup_, xyz, result, window, edge_spread, threads);
+    }
+    py::list list;
+    for (const auto& r : reports) list.append(frame_report(r, edge_spread));
+    return py::make_tuple(out, list);
+  }
+
   Index vertex_count() const { return setup_->vertex_count; }
   std::string method() const { return method_name(method_options(setup_->method)); }
   py::dict options() const { return figures_dict(option_figures(setup_->method)); }
@@ -370,6 +395,14 @@ PYBIND11_MODULE(skinslide, m) {
            "Slides one frame ((vertices, 3) float64): returns (positions, report). Releases "
            "the GIL: frames may be slid from several threads at once. edge_spread: report each "
            "patch's edge-length spread in the frame and slid (about 5% more time).")
+      .def("slide_sequence", &Slider::slide_sequence, py::arg("frames"), py::kw_only(),
+           py::arg("window") = RunOptions{}.window, py::arg("edge_spread") = false,
+           py::arg("threads") = 1u,
+           "Slides a sequence of frames (each (vertices, 3)): returns (positions (frames, "
+           "vertices, 3), reports). window N (elastic): each frame written at the mean of its "
+           "own and its N neighbours' slides on each side, as the command line's --window; 0: "
+           "each frame slide()'s. threads: frames slid at once (the same bits for any count). "
+           "Releases the GIL.")
       .def_property_readonly("vertex_count", &Slider::vertex_count)
       .def_property_readonly("method", &Slider::method)
       .def_property_readonly("options", &Slider::options)
@@ -381,6 +414,10 @@ PYBIND11_MODULE(skinslide, m) {
       },
       py::arg("method") = method_name(SlideOptions{}),
       "The method's options with their defaults, as Slider takes them (and 'method').");
+  m.def(
+      "window_spec", [] { return option_spec(window_option(), method_name(ElasticOptions{})); },
+      "The window slide_sequence takes, declared as option_specs() declares an option: the "
+      "command line's --window.");
   m.def("option_specs", &option_specs,
         "Every option Slider takes, as the command line declares it: a dict each with name, "
         "option (the command line's), method (None: either), type ('int', 'float' or 'word'), "

@@ -5,7 +5,8 @@
 
 A grid animated by an armature (a bone bends half of it) and by a shape key (a bulge), with a
 face selection, a pin group and a weight group; baked by the add-on's operator with each method,
-to a PC2 point cache played by a Mesh Cache modifier (the default) and to shape keys. The baked
+to a PC2 point cache played by a Mesh Cache modifier (the default) and to shape keys, and with a
+window over the neighbouring frames (elastic). The baked
 copy played back at every frame equals the command line's slide of the same evaluated frames
 (OBJ files written here) within Blender's float32 positions: the cache's playback is exactly the
 command's positions rounded to float32, and the add-on's PC2 is byte for byte the cache the
@@ -95,7 +96,7 @@ def played_back(obj, frame):
                                                len(obj.data.vertices))
 
 
-def command_slide(grid, method, case):
+def command_slide(grid, method, case, window):
     """The command line on the frames Blender evaluated (float32, written exactly): OBJ files,
     and the same frames as a PC2 (startFrame the first frame, rate 1). Returns the frame OBJs."""
     s = grid.skinslide
@@ -116,22 +117,24 @@ def command_slide(grid, method, case):
     # The strength as the add-on holds it: a Blender float property is a float32 (0.9 is
     # 0.8999999761581421), and the command must get those bits to give the add-on's.
     strength = repr(float(s.strength))
+    windowed = ["--window", str(window)] if window else []
     for source in (frames, [case / "shot.pc2"]):
-        subprocess.run([skinslide_bin, "-q", "--method", method, "--patch", case / "patch.txt",
+        subprocess.run([skinslide_bin, "-q", "--method", method, *windowed,
+                        "--patch", case / "patch.txt",
                         "--weights", case / "weights.txt", "--pin", case / "pins.txt",
                         "--strength", strength, case / "bind.obj", *source, "-o", case / "slid"],
                        check=True)
     return frames
 
 
-def check(grid, method, bake_to, folder):
+def check(grid, method, bake_to, folder, window=0):
     s = grid.skinslide
     s.method, s.pin_group, s.weight_group, s.strength = method, "pins", "slide", 0.9
-    s.bake_to, s.cache_folder = bake_to, folder
+    s.bake_to, s.cache_folder, s.window = bake_to, folder, window
     assert bpy.ops.object.skinslide_bake() == {"FINISHED"}, method
     copy = bpy.data.objects[grid.name + skinslide_addon.SLID_SUFFIX]
-    case = work / f"{method}_{bake_to}"
-    frames = command_slide(grid, method, case)
+    case = work / f"{method}_{bake_to}_window{window}"
+    frames = command_slide(grid, method, case, window)
     if bake_to == "PC2":
         check_cache(copy, case, folder)
     else:
@@ -152,7 +155,7 @@ def check(grid, method, bake_to, folder):
         assert error <= 1e-6 * diagonal, f"{method} frame {frame}: off by {error}"
         moved = max(moved, np.abs(expected - played_back(grid, frame)).max())
     assert moved > 1e-3 * diagonal, f"{method}: the skin slid ({moved})"
-    print(f"bake_test: {method}, {bake_to}: {len(FRAMES)} frames played back as the command slid "
+    print(f"bake_test: {method}, {bake_to}, window {window}: {len(FRAMES)} frames played back as the command slid "
           f"them: largest difference {error:.3g} ({error / diagonal:.3g} of the diagonal; largest "
           f"slide {moved:.4g})")
 
@@ -190,6 +193,7 @@ check(grid, "paper", "SHAPE_KEYS", "")
 bpy.ops.wm.save_as_mainfile(filepath=str(work / "scene.blend"))
 check(grid, "paper", "PC2", "")  # beside the .blend
 check(grid, "elastic", "SHAPE_KEYS", "")
+check(grid, "elastic", "PC2", "", window=2)  # the command's --window over the same frames
 # An error is Blender's report, not a crash: a patch of no faces.
 for p in grid.data.polygons:
     p.select = False

@@ -43,7 +43,10 @@ def _frame_positions(case, f):
 def build(seed, meshes, ctx):
     case = cli_case.build(seed, meshes, ctx)
     case.require_converged = False  # a command-line option: the module's runs compare with exit 0
-    case.window = 0  # a run's option (its neighbouring frames): the module slides a frame at a time
+    # --window: the module's slide_sequence over the same frames in the command's order (FRAME
+    # files by number, a cache's samples); a clip's frames are the module's own, slid one by one.
+    if case.mode == "animation":
+        case.window = 0
     rng = random.Random(seed ^ 0x5EED)
     case.py_usage = None
     case.py_input = None
@@ -92,6 +95,8 @@ def build(seed, meshes, ctx):
         if case.frame_form == "float32":
             p = p.astype(np.float32).astype(np.float64)
         case.py_frames.append((f, p))
+    if case.window and case.mode == "files":
+        case.py_frames.sort(key=lambda fp: fp[0].number)
     # one malformed argument, in a case that is otherwise accepted, and the kind it must raise
     case.mangle = None
     if expected(case)[0] is None and case.py_frames and rng.random() < 0.15:
@@ -167,7 +172,8 @@ def run_case(seed, meshes, ctx, folder):
             "strength": case.strength, "outer": case.outer, "corners": case.corners,
             "method": case.method, "threads": case.threads, "options": case.py_options,
             "frame_count": len(case.py_frames), "frame_form": case.frame_form,
-            "edge_spread": case.edge_spread, "pool": case.pool, "mangle": case.mangle}
+            "edge_spread": case.edge_spread, "pool": case.pool, "mangle": case.mangle,
+            "window": case.window}
     (folder / "spec.json").write_text(json.dumps(spec, indent=1))
     argv = ["/usr/bin/python3", os.path.join(HERE, "py_worker.py"), "spec.json"]
     env = dict(os.environ)
@@ -311,7 +317,8 @@ def check(case, result, outs):
                     problems.append(f"{label}: patch {ci}: {pr['flips']} flips (elastic slides "
                                     f"fold-free)")
     if case.pool and result.get("pool_same") is False:
-        problems.append("frames slid by a thread pool differ from the serial bits")
+        problems.append("frames slid by a thread pool (slide_sequence: 3 threads) differ from the "
+                        "serial bits")
     return problems
 
 
@@ -319,4 +326,6 @@ def describe(case):
     return (cli_case.describe(case) + f"\n  python: faces {case.faces_form}/{case.flat_form}, "
             f"patches {case.patch_form}{' (one list)' if case.single_patch else ''}, frames "
             f"{case.frame_form}, options {case.py_options}, edge_spread {case.edge_spread}, "
-            f"pool {case.pool}, mangled {case.mangle}; expected {expected(case)[1]}")
+            f"pool {case.pool}, mangled {case.mangle}"
+            f"{', slide_sequence window %d' % case.window if case.window else ''}; "
+            f"expected {expected(case)[1]}")

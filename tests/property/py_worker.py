@@ -97,15 +97,25 @@ def main():
             frames[0][0, 2] = np.nan
         if mangle == "short_frame" and frames:
             frames[0] = frames[0][:-1]
+        window = spec["window"]
         reports = []
-        for k, f in enumerate(frames):
-            slid, report = slider.slide(f, edge_spread=spec["edge_spread"])
-            out[f"out{k}"] = slid
-            reports.append(report)
+        if window:  # one sequence, each frame with its neighbours' slides
+            slid, reports = slider.slide_sequence(frames, window=window,
+                                                  edge_spread=spec["edge_spread"])
+            for k in range(len(frames)):
+                out[f"out{k}"] = slid[k]
+        else:
+            for k, f in enumerate(frames):
+                slid, report = slider.slide(f, edge_spread=spec["edge_spread"])
+                out[f"out{k}"] = slid
+                reports.append(report)
         result["reports"] = reports
         if spec["pool"] and frames:
-            with concurrent.futures.ThreadPoolExecutor(max_workers=3) as pool:
-                again = list(pool.map(lambda f: slider.slide(f)[0], frames))
+            if window:
+                again = list(slider.slide_sequence(frames, window=window, threads=3)[0])
+            else:
+                with concurrent.futures.ThreadPoolExecutor(max_workers=3) as pool:
+                    again = list(pool.map(lambda f: slider.slide(f)[0], frames))
             result["pool_same"] = all(a.tobytes() == out[f"out{k}"].tobytes()
                                       for k, a in enumerate(again))
         result["stage"] = "done"

@@ -80,6 +80,68 @@ def test_a_thread_pool_gives_the_bits_of_a_serial_run():
     assert parallel == serial
 
 
+@pytest.mark.parametrize("window", [1, 3])
+def test_a_windowed_sequence_slides_to_the_commands_bits(window, cli, tmp_path):
+    bind, patch = DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt"
+    frames = sorted((DATA / "elbow" / "frames").glob("*.obj"))
+    cli("--window", str(window), "--patch", patch, bind, *frames, "-o", tmp_path)
+    slider = slider_from_files(bind, patch)
+    poses = [frame_positions(f) for f in frames]
+    serial, reports = slider.slide_sequence(poses, window=window)
+    assert serial.shape == (len(frames), slider.vertex_count, 3)
+    for k, frame in enumerate(frames):
+        assert serial[k].tobytes() == obj_positions(tmp_path / frame.name).tobytes(), frame.name
+    assert all("window_returned" in p for r in reports for p in r["patches"])
+    alone = [slider.slide(f)[0].tobytes() for f in poses]
+    assert [s.tobytes() for s in serial] != alone, "the window changes the slide"
+    threaded, _ = slider.slide_sequence(np.stack(poses), window=window, threads=4)
+    assert threaded.tobytes() == serial.tobytes(), "any thread count, one (F, V, 3) array too"
+
+
+def test_a_sequence_without_a_window_is_each_frames_slide():
+    slider = slider_from_files(DATA / "face" / "bind.obj", DATA / "face" / "patch.txt",
+                               method="paper")
+    poses = [frame_positions(f) for f in sorted((DATA / "face" / "frames").glob("*.obj"))]
+    slid, reports = slider.slide_sequence(poses, threads=3)
+    for k, pose in enumerate(poses):
+        out, report = slider.slide(pose)
+        assert slid[k].tobytes() == out.tobytes()
+        assert reports[k]["moved"] == report["moved"]
+    assert slider.slide_sequence([])[0].shape == (0, slider.vertex_count, 3)
+
+
+def test_a_sequence_is_refused_with_its_fault_named():
+    elastic = slider_from_files(DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt")
+    paper = slider_from_files(DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt",
+                              method="paper")
+    pose = frame_positions(DATA / "elbow" / "frames" / "elbow.0005.obj")
+    with pytest.raises(skinslide.UsageError, match=r"window 101 is out of its range \[0, 100\]"):
+        elastic.slide_sequence([pose], window=skinslide.window_spec()["max"] + 1)
+    assert skinslide.window_spec() | {"help": ""} == {
+        "name": "window", "option": "--window", "method": "elastic", "type": "int", "default": 0,
+        "min": 0, "max": 100, "help": ""}
+    with pytest.raises(skinslide.UsageError, match="window -1"):
+        elastic.slide_sequence([pose], window=-1)
+    with pytest.raises(skinslide.UsageError, match="elastic method's; .* paper method"):
+        paper.slide_sequence([pose], window=2)
+    with pytest.raises(skinslide.InputError, match="frame 1 has 9 coordinates"):
+        elastic.slide_sequence([pose, pose[:3]], window=2)
+    broken = pose.copy()
+    broken[7, 1] = np.nan
+    with pytest.raises(skinslide.InputError, match="frame 2: vertex 7 is not finite"):
+        elastic.slide_sequence([pose, pose, broken], window=1)
+    with pytest.raises(skinslide.UsageError, match="each frame must be an array"):
+        elastic.slide_sequence([pose, pose.ravel()], window=1)
+    # A frame that cannot be relaxed fails every frame whose window holds it: the first of them,
+    # frame 1, is raised, naming the neighbour, whatever the threads.
+    huge = pose * 1e200
+    with pytest.raises(skinslide.InputError,
+                       match="^frame 1: its --window neighbour frame 2: patch 0: .* too large"):
+        elastic.slide_sequence([pose, pose, huge, pose], window=1, threads=3)
+    with pytest.raises(skinslide.InputError, match="^frame 2: patch 0: .* too large"):
+        elastic.slide_sequence([pose, pose, huge, pose], threads=3)
+
+
 def test_controls_from_files_match_the_command(cli, tmp_path):
     bind, patch = DATA / "face" / "bind.obj", DATA / "face" / "patch.txt"
     frame = DATA / "face" / "frames" / "face.0003.obj"

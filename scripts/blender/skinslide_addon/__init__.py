@@ -91,7 +91,10 @@ class SkinslideSettings(bpy.types.PropertyGroup):
         description="Where the PC2 goes (<object>_slid.pc2); empty: beside the .blend")
 
 
-for _spec in OPTION_SPECS:  # strength, method and every method's options
+# The window over the range's neighbouring frames (--window), declared by the module as well.
+WINDOW_SPEC = skinslide.window_spec() if skinslide is not None else None
+
+for _spec in OPTION_SPECS + ([WINDOW_SPEC] if WINDOW_SPEC else []):
     SkinslideSettings.__annotations__[_spec["name"]] = _option_property(_spec)
 
 
@@ -159,6 +162,27 @@ def make_slider(obj, s):
     return skinslide.Slider(positions, face_vertices, faces, face_sizes=face_sizes,
                             method=s.method, threads=os.cpu_count() or 1,
                             **controls, **slider_options(s))
+
+
+def window(s):
+    """The settings' window: the elastic method's only (the command line refuses it with the
+    paper's)."""
+    return s.window if WINDOW_SPEC and s.method == WINDOW_SPEC["method"] else 0
+
+
+def slide_poses(slider, poses, width, wm):
+    """The range's poses slid, each to the bits of a serial slide: frame by frame on every core
+    (the module releases the GIL), or as one sequence with a window over the neighbouring frames
+    (the command line's --window on the same frames)."""
+    if width > 0:
+        return list(slider.slide_sequence(poses, window=width, threads=os.cpu_count() or 1)[0])
+    slid = [None] * len(poses)
+    with concurrent.futures.ThreadPoolExecutor(os.cpu_count() or 1) as pool:
+        jobs = {pool.submit(slider.slide, pose): k for k, pose in enumerate(poses)}
+        for done, job in enumerate(concurrent.futures.as_completed(jobs)):
+            slid[jobs[job]] = job.result()[0]
+            wm.progress_update(len(poses) + done + 1)
+    return slid
 
 
 def evaluated_positions(obj, depsgraph, vertex_count):
@@ -252,14 +276,7 @@ class SKINSLIDE_OT_bake(bpy.types.Operator):
                 poses.append(evaluated_positions(obj, context.evaluated_depsgraph_get(),
                                                  slider.vertex_count))
                 wm.progress_update(k + 1)
-            # The module releases the GIL: frames slide on every core, each to the bits of a
-            # serial slide.
-            slid = [None] * len(frames)
-            with concurrent.futures.ThreadPoolExecutor(os.cpu_count() or 1) as pool:
-                jobs = {pool.submit(slider.slide, pose): k for k, pose in enumerate(poses)}
-                for done, job in enumerate(concurrent.futures.as_completed(jobs)):
-                    slid[jobs[job]] = job.result()[0]
-                    wm.progress_update(len(frames) + done + 1)
+            slid = slide_poses(slider, poses, window(s), wm)
             baked = bake_result(context, obj, frames, slid, path)
         except (skinslide.Error, ValueError, OSError) as e:
             self.report({"ERROR"}, f"skinslide: {e}")
@@ -302,6 +319,8 @@ class SKINSLIDE_PT_panel(bpy.types.Panel):
         for spec in OPTION_SPECS:  # strength, method, then the chosen method's options
             if spec["method"] in (None, s.method):
                 col.prop(s, spec["name"])
+        if WINDOW_SPEC and s.method == WINDOW_SPEC["method"]:
+            col.prop(s, WINDOW_SPEC["name"])
         col.separator()
         col.prop(s, "use_scene_range")
         row = col.row(align=True)
