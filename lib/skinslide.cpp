@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/number_format.h"
+#include "pipeline/frame_window.h"
 
 namespace skinslide {
 namespace {
@@ -99,16 +100,6 @@ void check_frame(const BindSetup& setup, std::span<const double> frame, std::spa
 
 std::string frame_name(size_t k) { return "frame " + std::to_string(k); }
 
-// `run`'s result; its Error, if any, with frame k named.
-template <class Run>
-auto labelled(size_t k, Run run) {
-  try {
-    return run();
-  } catch (const Error& e) {
-    throw Error(e.kind(), frame_name(k) + ": " + e.what());
-  }
-}
-
 // slide_sequence's arguments: the window's range and method, one output a frame, each frame and
 // output as slide() checks them.
 void check_sequence(const BindSetup& setup, std::span<const std::span<const double>> frames,
@@ -179,7 +170,7 @@ std::vector<std::vector<PatchFrameReport>> slide_sequence(
   std::optional<RelaxationStore> store;
   if (window > 0)
     store.emplace(ordered_window_plan(window, count), all, [&](size_t k) {
-      return labelled(k, [&] { return relax_frame(setup, as_points(frames[k])); });
+      return labelled(frame_name(k), [&] { return relax_frame(setup, as_points(frames[k])); });
     });
   std::vector<std::vector<PatchFrameReport>> reports(count);
   std::vector<std::exception_ptr> errors(count);
@@ -193,7 +184,7 @@ std::vector<std::vector<PatchFrameReport>> slide_sequence(
         rethrow_window_error(members, k, frame_name(k));  // relaxations' errors are labelled
         mean = windowed_frame(members, k);
       }
-      reports[k] = labelled(k, [&] {
+      reports[k] = labelled(frame_name(k), [&] {
         return written(slide_frame(setup, as_points(frames[k]), extras, mean ? &*mean : nullptr),
                        frames[k], outs[k]);
       });

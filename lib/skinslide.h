@@ -1,8 +1,9 @@
 // skinslide as a library: what a program embedding it includes (the command line in cli/ and
 // the Python module in lib/python/ are its two clients). Arrays in and out (set_up, slide,
-// below); or a whole run of files, as the command line makes it (run(), pipeline/run.h), with
-// point caches' farm chunks joined by join_cache_chunks (io/cache_chunks.h) and the temporaries
-// of a cancelled run removed (remove_temporaries_on_termination, io/atomic_write.h).
+// slide_sequence with a window over the neighbouring frames, below); or a whole run of files, as
+// the command line makes it (run(), pipeline/run.h), with point caches' farm chunks joined by
+// join_cache_chunks (io/cache_chunks.h) and the temporaries of a cancelled run removed
+// (remove_temporaries_on_termination, io/atomic_write.h).
 //
 //   skinslide::Bind bind{positions, face_vertices, face_sizes};     // arrays, 0-based ids
 //   const skinslide::BindSetup setup = skinslide::set_up(bind, {patch_faces}, PaperOptions{});
@@ -24,7 +25,6 @@
 #include "io/atomic_write.h"
 #include "io/cache_chunks.h"
 #include "pipeline/bind_setup.h"
-#include "pipeline/frame_window.h"
 #include "pipeline/method.h"
 #include "pipeline/options.h"
 #include "pipeline/run.h"

@@ -24,6 +24,17 @@ class Error : public std::runtime_error {
   ErrorKind kind_;
 };
 
+/// fn()'s result; an Error it throws comes out of the same kind, its message after "LABEL: " (a
+/// frame's or a patch's name), so that the message says where.
+template <class Fn>
+auto labelled(const std::string& label, Fn&& fn) {
+  try {
+    return fn();
+  } catch (const Error& e) {
+    throw Error(e.kind(), label + ": " + e.what());
+  }
+}
+
 /// Exit code for each kind: 0 ok, 1 internal, 2 usage, 3 bad input, 4 cannot write, 5 numeric.
 int exit_code(ErrorKind kind);
 

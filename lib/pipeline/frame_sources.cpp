@@ -27,15 +27,12 @@ std::pair<size_t, std::string> first_unconverged(const FrameResult& result) {
 // not converge fails the frame before anything of it is written.
 FrameResult slide_named(const BindSetup& setup, const RunOptions& o, const Positions3& positions,
                         const std::string& name, const WindowedFrame* window) {
-  FrameResult result;
-  try {
-    result = slide_frame(
+  FrameResult result = labelled(name, [&] {
+    return slide_frame(
         setup, positions,
         {.id_image_size = o.dump_dir.empty() ? 0 : o.lookup_size, .edge_spread = !o.report.empty()},
         window);
-  } catch (const Error& e) {
-    throw Error(e.kind(), name + ": " + e.what());
-  }
+  });
   if (o.require_converged)
     if (const auto [p, fault] = first_unconverged(result); !fault.empty())
       throw Error(ErrorKind::Numeric, name + ": patch " + std::to_string(p) +
@@ -240,11 +237,7 @@ FrameRelaxations relax_source_frame(const BindSetup& setup, const MeshFile& bind
     label = o.frames[i];
     positions = read_frame_file(bind, o, label).mesh.positions;
   }
-  try {
-    return relax_frame(setup, positions);
-  } catch (const Error& e) {
-    throw Error(e.kind(), label + ": " + e.what());
-  }
+  return labelled(label, [&] { return relax_frame(setup, positions); });
 }
 
 }  // namespace skinslide

@@ -150,7 +150,7 @@ FrameRelaxations relax_frame(const BindSetup& setup, std::span<const Vec3> frame
   for (size_t p = 0; p < setup.patches.size(); ++p) {
     const Patch& patch = setup.patches[p];
     if (patch.skipped) continue;
-    try {
+    labelled("patch " + std::to_string(p), [&] {
       const Positions3 points = patch_points(patch, frame);
       const ElasticSetup& elastic = *method.patches[p];
       const auto t0 = Clock::now();
@@ -158,9 +158,7 @@ FrameRelaxations relax_frame(const BindSetup& setup, std::span<const Vec3> frame
       out.seconds[p] = seconds_since(t0);
       // A frame at rest is written unchanged (slide_and_gather): its slide is none.
       if (at_rest(patch, frame, setup.bind_positions)) put_at_start(elastic, points, r);
-    } catch (const Error& e) {
-      throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
-    }
+    });
   }
   return out;
 }
@@ -176,11 +174,9 @@ FrameResult slide_frame(const BindSetup& setup, std::span<const Vec3> frame,
   slid.sample.reserve(free_vertices);
   slid.position.reserve(free_vertices);
   for (size_t p = 0; p < setup.patches.size(); ++p) {
-    try {
-      result.patches.push_back(slide_and_gather(setup, p, frame, extras, window, slid));
-    } catch (const Error& e) {
-      throw Error(e.kind(), "patch " + std::to_string(p) + ": " + e.what());
-    }
+    result.patches.push_back(labelled("patch " + std::to_string(p), [&] {
+      return slide_and_gather(setup, p, frame, extras, window, slid);
+    }));
   }
   // Each patch lists its vertices in ascending order: one patch, or patches that do not
   // interleave, need no reordering of the frame's largest lists.

@@ -109,6 +109,14 @@ struct ElbowRun {
   ElbowRun() {
     for (const Positions3& f : sample.frames) relaxed.push_back(relax_frame(setup, f));
   }
+  // Frame f's positions of the patch's vertices (local ids): what window_mean reads.
+  Positions3 patch_points(std::size_t f) const {
+    const Patch& patch = setup.patches[0];
+    Positions3 points(patch.vertices.size());
+    for (size_t i = 0; i < points.size(); ++i) points[i] = sample.frames[f][patch.vertices[i]];
+    return points;
+  }
+  const ElasticSetup& elastic() const { return *test::elastic(setup).patches[0]; }
 };
 
 TEST(FrameWindow, AWindowOfOneFrameWritesItsOwnSlide) {
@@ -174,10 +182,8 @@ TEST(FrameWindow, AWindowedFrameKeepsEveryPromiseOfAFrameAlone) {
 TEST(FrameWindow, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
   const ElbowRun run;
   const std::size_t f = 2;
-  const Patch& patch = run.setup.patches[0];
-  Positions3 points(patch.vertices.size());
-  for (size_t i = 0; i < points.size(); ++i) points[i] = run.sample.frames[f][patch.vertices[i]];
-  const ElasticSetup& elastic = *test::elastic(run.setup).patches[0];
+  const Positions3 points = run.patch_points(f);
+  const ElasticSetup& elastic = run.elastic();
   const ElasticResult& own = run.relaxed[f].patches[0];
   const Positions2 neighbours = chart_point_mean(
       {{&run.relaxed[1].patches[0].uv, 0.5}, {&run.relaxed[3].patches[0].uv, 0.5}});
@@ -217,10 +223,8 @@ TEST(FrameWindow, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
 TEST(FrameWindow, AMeanRisingAboveTheFramesEnergyIsLeftByNoJump) {
   const ElbowRun run;
   const std::size_t f = 2;
-  const Patch& patch = run.setup.patches[0];
-  Positions3 points(patch.vertices.size());
-  for (size_t i = 0; i < points.size(); ++i) points[i] = run.sample.frames[f][patch.vertices[i]];
-  const ElasticSetup& elastic = *test::elastic(run.setup).patches[0];
+  const Positions3 points = run.patch_points(f);
+  const ElasticSetup& elastic = run.elastic();
   const ElasticResult& own = run.relaxed[f].patches[0];
   // The mean driven away from the frame's own slide along a neighbour's difference, until its
   // energy is above the frame's: the patch must then go back towards its own slide by as much
