@@ -1,7 +1,7 @@
 """Renders the add-on's panel to a PNG (README "In Blender"): Blender draws its UI only with a
 display, so run it under Xvfb:
 
-    xvfb-run -s "-screen 0 1700x1760x24" blender --factory-startup -noaudio \\
+    xvfb-run -s "-screen 0 1700x2100x24" blender --factory-startup -noaudio \\
         --python scripts/blender/panel_screenshot.py -- build/python data/blender_panel.png
 """
 import os
