@@ -177,6 +177,8 @@ void add_method(CLI::App& app, CliOptions& o) {
   // A run's option, not a frame's (pipeline/run_options.h window_option).
   CLI::Option* window = add_table_option(app, window_option(), o.run, o, method)->type_name("N");
   o.method_only.push_back({window, method_name(ElasticOptions{})});
+  CLI::Option* ends = add_table_option(app, window_ends_option(), o.run, o, method);
+  o.method_only.push_back({ends, method_name(ElasticOptions{})});
 }
 
 void add_run(CLI::App& app, CliOptions& o) {
@@ -332,6 +334,9 @@ void check_options(const CLI::App& app, CliOptions& o) {
       throw CLI::ValidationError(
           option->get_name(), "applies to --method " + only + " only, not to --method " + method);
   const RunOptions& r = o.run;
+  if (app.count("--" + window_ends_option().name) > 0 && r.window == 0)
+    throw CLI::ValidationError("--" + window_ends_option().name,
+                               "says where --window's frames end: give --window N too");
   if (r.patches.empty() && !r.no_slide) throw CLI::RequiredError("--patch");
   if (r.no_slide &&
       (o.has_rig || !r.report.empty() || !r.dump_dir.empty() || !r.preview_dir.empty()))
@@ -376,6 +381,8 @@ Options with_words(Options options, const std::map<std::string, std::string>& wo
 
 RunOptions run_options(const CliOptions& o) {
   RunOptions r = with_words(o.run, o.words);  // the method named, with its defaults
+  std::get<WordOption<RunOptions>>(window_ends_option().value)
+      .set(r, o.words.at(window_ends_option().name));
   if (o.has_rig)
     r.rig = o.rig;
   else if (r.format == "mdd")

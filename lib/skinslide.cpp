@@ -100,13 +100,15 @@ void check_frame(const BindSetup& setup, std::span<const double> frame, std::spa
 
 std::string frame_name(size_t k) { return "frame " + std::to_string(k); }
 
-// slide_sequence's arguments: the window's range and method, one output a frame, each frame and
-// output as slide() checks them.
+// slide_sequence's arguments: the window's range, method and ends, one output a frame, each frame
+// and output as slide() checks them.
 void check_sequence(const BindSetup& setup, std::span<const std::span<const double>> frames,
-                    std::span<const std::span<double>> outs, int window) {
+                    std::span<const std::span<double>> outs, int window, WindowEnds ends) {
   if (window < 0 || window > kMaxWindow)
     throw Error(ErrorKind::Usage, "window " + std::to_string(window) + " is out of its range [0, " +
                                       std::to_string(kMaxWindow) + "]");
+  if (window == 0 && ends == WindowEnds::Cycle)
+    throw Error(ErrorKind::Usage, "cycle ends say where a window's frames end: give a window too");
   if (window > 0 && !std::holds_alternative<ElasticMethod>(setup.method))
     throw Error(ErrorKind::Usage, "a window is the elastic method's; this set-up slides by the " +
                                       method_name(method_options(setup.method)) + " method");
@@ -162,14 +164,17 @@ std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const doub
 
 std::vector<std::vector<PatchFrameReport>> slide_sequence(
     const BindSetup& setup, std::span<const std::span<const double>> frames,
-    std::span<const std::span<double>> outs, int window, bool edge_spread, unsigned threads) {
-  check_sequence(setup, frames, outs, window);
+    std::span<const std::span<double>> outs, int window, bool edge_spread, unsigned threads,
+    WindowEnds ends) {
+  check_sequence(setup, frames, outs, window, ends);
   const size_t count = frames.size();
   std::vector<size_t> all(count);
   std::iota(all.begin(), all.end(), size_t{0});
   std::optional<RelaxationStore> store;
+  WindowPlan plan = ordered_window_plan(window, count);
+  plan.cycle = ends == WindowEnds::Cycle;
   if (window > 0)
-    store.emplace(ordered_window_plan(window, count), all, [&](size_t k) {
+    store.emplace(std::move(plan), all, [&](size_t k) {
       return labelled(frame_name(k), [&] { return relax_frame(setup, as_points(frames[k])); });
     });
   std::vector<std::vector<PatchFrameReport>> reports(count);

@@ -71,15 +71,17 @@ std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const doub
 /// receives it slid. With `window` N > 0 (the elastic method's --window, README "Slow motion";
 /// lib/elastic/README.md rule 12) each frame is written at the mean of its own and its N
 /// neighbours' relaxations on each side, one-sided where the sequence ends: the bits the command
-/// line writes for the same frames in the same order. With 0 each frame is slide()'s. Frames are
-/// relaxed and written on `threads` threads (each relaxed once, kept while a window needs it);
+/// line writes for the same frames in the same order; with `ends` Cycle the sequence is a loop and
+/// the windows wrap around its ends (--window-ends cycle). With 0 each frame is slide()'s. Frames
+/// are relaxed and written on `threads` threads (each relaxed once, kept while a window needs it);
 /// the result is the same for any count. Returns each frame's reports, as slide().
-/// \throw Error(Usage) for a window out of [0, kMaxWindow] or a window with the paper method;
+/// \throw Error(Usage) for a window out of [0, kMaxWindow], a window with the paper method, or
+///        Cycle ends without a window;
 ///        Error(Input) as slide(), naming the frame; Error(Numeric) naming the frame that failed
 ///        (the first in the sequence), or the neighbour whose relaxation a window needed.
 std::vector<std::vector<PatchFrameReport>> slide_sequence(
     const BindSetup& setup, std::span<const std::span<const double>> frames,
     std::span<const std::span<double>> outs, int window, bool edge_spread = false,
-    unsigned threads = 1);
+    unsigned threads = 1, WindowEnds ends = WindowEnds::OneSided);
 
 }  // namespace skinslide

@@ -58,14 +58,24 @@ std::vector<WindowWeight> window_of(const WindowPlan& plan, std::size_t frame) {
   const long long n = static_cast<long long>(plan.order.size());
   // One-sided at the ends of the sequence: narrowed to stay symmetric, it would hand the first
   // and last frames their own jumps back (the first frame's window would be itself alone). A
-  // loop's seam is not smoothed: the frames past it are not given.
+  // loop's seam is smoothed only when the sequence is said to be one (cycle).
   std::vector<WindowWeight> out;
   double sum = 0;
   for (long long k = -plan.reach; k <= plan.reach; ++k) {
-    if (at + k < 0 || at + k >= n) continue;
+    long long place = at + k;
+    if (plan.cycle)
+      place = ((place % n) + n) % n;
+    else if (place < 0 || place >= n)
+      continue;
+    const std::size_t f = plan.order[static_cast<std::size_t>(place)];
     const double w = static_cast<double>(plan.reach + 1 - std::llabs(k));
-    out.push_back({plan.order[static_cast<std::size_t>(at + k)], w});
     sum += w;
+    const auto same =
+        std::find_if(out.begin(), out.end(), [&](const WindowWeight& m) { return m.frame == f; });
+    if (same != out.end())
+      same->weight += w;
+    else
+      out.push_back({f, w});
   }
   for (WindowWeight& m : out) m.weight /= sum;
   return out;

@@ -25,6 +25,8 @@ namespace skinslide {
 /// The order of a run's frames and its reach N.
 struct WindowPlan {
   int reach = 0;
+  /// The windows wrap around the sequence's ends (--window-ends cycle); else one-sided there.
+  bool cycle = false;
   std::vector<std::size_t> order;  ///< frame indices in sequence order
   std::vector<std::size_t> place;  ///< per frame index, its place in `order`
 };
@@ -43,8 +45,10 @@ struct WindowWeight {
   double weight = 0;
 };
 
-/// Frame `frame`'s window, in sequence order: the frames within N of it, weights N + 1 - |k| over
-/// their sum (one-sided where the sequence ends).
+/// Frame `frame`'s window, in sequence order from k = -N: the frames within N of it, weights
+/// N + 1 - |k| over their sum: one-sided where the sequence ends, or with `cycle` wrapped around
+/// them (a frame reached twice in a sequence shorter than the window counts once, its weights
+/// summed).
 std::vector<WindowWeight> window_of(const WindowPlan& plan, std::size_t frame);
 
 /// The relaxations of a run's frames (relax_frame), each computed once, by the first thread that

@@ -58,7 +58,10 @@ std::vector<LogLine> bind_lines(const RunOptions& o, const BindSetup& setup,
         {LogLevel::Info,
          "skinslide: " + o.bind + ": " + std::to_string(setup.patches.size()) + " patches, " +
              std::to_string(sliding) + " sliding vertices (" + method_label(setup.method) +
-             (o.window > 0 ? ", window " + std::to_string(o.window) : std::string()) + ")"});
+             (o.window > 0 ? ", window " + std::to_string(o.window) +
+                                 (o.window_ends == WindowEnds::Cycle ? " around a loop" : "")
+                           : std::string()) +
+             ")"});
   const auto v = [&](const Patch& n, Index local) { return std::to_string(n.vertices[local]); };
   for (size_t p = 0; p < setup.patches.size(); ++p) {
     const Patch& n = setup.patches[p];

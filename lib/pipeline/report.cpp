@@ -150,8 +150,13 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   root.add("patch_files", inline_array(files));
   Object options(2);
   Figures option_list = option_figures(setup.method);
-  if (std::holds_alternative<ElasticMethod>(setup.method))
-    option_list.push_back({"window", static_cast<long long>(run.window)});
+  if (std::holds_alternative<ElasticMethod>(setup.method)) {
+    RunOptions window;
+    window.window = run.window;
+    window.window_ends = run.window_ends;
+    option_list.push_back(option_figure(window_option(), window));
+    option_list.push_back(option_figure(window_ends_option(), window));
+  }
   root.add("options", add(options, option_list).str());
   root.add("controls", controls_json(setup, run));
   root.add("patches", patches_json(setup));
@@ -188,6 +193,7 @@ void write_run_report(const RunOptions& o, const BindSetup& setup, double wall_s
   report.bind = o.bind;
   report.patch_files = o.patches;
   report.window = o.window;
+  report.window_ends = o.window_ends;
   report.timings = o.report_timings;
   report.wall_seconds = wall_seconds;
   std::erase_if(report.frames, [](const ReportFrame& r) { return r.output.empty(); });

@@ -29,9 +29,10 @@ struct RunReport {
   std::vector<std::string> patch_files;
   std::string weights;  ///< where the slide weights came from; empty = none
   double strength = 1;
-  int window = 0;            ///< --window (elastic): its reach N, in "options" after the method's
-  std::string pins;          ///< the pin file; empty = none
-  Index pins_requested = 0;  ///< distinct ids in the pin file
+  int window = 0;  ///< --window (elastic): its reach N, in "options" after the method's
+  WindowEnds window_ends = WindowEnds::OneSided;  ///< --window-ends, after window
+  std::string pins;                               ///< the pin file; empty = none
+  Index pins_requested = 0;                       ///< distinct ids in the pin file
   std::vector<ReportFrame> frames;
   bool timings = true;      ///< write the "timings" object
   double bind_seconds = 0;  ///< reading the bind and patch files, building the set-up
@@ -40,13 +41,14 @@ struct RunReport {
 
 /// The report as JSON text (UTF-8, 2-space indent, final newline). Layout:
 /// { "skinslide": version, "bind", "patch_files", "options": {method, then its tunables
-///   (method.h option_figures), then, for the elastic method, window}, "controls": {weights,
-///   strength, pins, pins_requested, pins_ignored}, "patches": [per patch: faces, vertices, free,
-///   pinned, loops, outer_loop_start, outer_loop_chosen, skipped and the method's figures, in the
-///   order patch_figures gives them], "frames": [{path, output, patches: [{the method's figures
-///   (report_figures), moved, max_slide, mean_slide, spread_frame, spread_slid}]}], "totals":
-///   {frames, moved, the method's sums (total_figures), max_slide}, "timings": {seconds per
-///   stage summed over frames: bind_setup, read, solve, locate, transfer, write; wall} }
+///   (method.h option_figures), then, for the elastic method, window and window_ends}, "controls":
+///   {weights, strength, pins, pins_requested, pins_ignored}, "patches": [per patch: faces,
+///   vertices, free, pinned, loops, outer_loop_start, outer_loop_chosen, skipped and the method's
+///   figures, in the order patch_figures gives them], "frames": [{path, output, patches: [{the
+///   method's figures (report_figures), moved, max_slide, mean_slide, spread_frame,
+///   spread_slid}]}], "totals": {frames, moved, the method's sums (total_figures), max_slide},
+///   "timings": {seconds per stage summed over frames: bind_setup, read, solve, locate, transfer,
+///   write; wall} }
 /// Skipped patches report zeros. Vertex ids are mesh ids.
 std::string report_json(const BindSetup& setup, const RunReport& run);
 

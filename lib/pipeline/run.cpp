@@ -41,10 +41,10 @@ void make_output_dir(const std::string& dir) {
 std::unique_ptr<RelaxationStore> relaxation_store(const RunOptions& o, const BindSetup& setup,
                                                   const MeshFile& bind, const FrameSource& source) {
   if (o.window == 0 || o.no_slide) return nullptr;
-  const WindowPlan plan = o.rig ? ordered_window_plan(o.window, source.clip.names.size())
-                          : source.cache.cache
-                              ? ordered_window_plan(o.window, source.cache.names.size())
-                              : files_window_plan(o.window, o.frames);
+  WindowPlan plan = o.rig                ? ordered_window_plan(o.window, source.clip.names.size())
+                    : source.cache.cache ? ordered_window_plan(o.window, source.cache.names.size())
+                                         : files_window_plan(o.window, o.frames);
+  plan.cycle = o.window_ends == WindowEnds::Cycle;
   return std::make_unique<RelaxationStore>(plan, source.plan.chosen, [&, o](size_t i) {
     return relax_source_frame(setup, bind, source, o, i);
   });

@@ -35,8 +35,8 @@ struct RunEvents {
 
 /// What a finished run did.
 struct RunResult {
-  std::size_t frames = 0;       ///< frames --frames selected (written + failed)
-  std::vector<Error> failures;  ///< keep_going: each failed frame's error (logged), frame order
+  std::size_t frames = 0;         ///< frames --frames selected (written + failed)
+  std::vector<Error> failures;    ///< keep_going: each failed frame's error (logged), frame order
   std::size_t not_converged = 0;  ///< frames written with a patch that did not converge
 };
 

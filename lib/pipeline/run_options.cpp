@@ -11,6 +11,9 @@ WordOption<RunOptions> method_words() {
   return option;
 }
 
+constexpr Words<WindowEnds, 2> kWindowEnds{
+    "window end", {{{"one-sided", WindowEnds::OneSided}, {"cycle", WindowEnds::Cycle}}}};
+
 }  // namespace
 
 template <>
@@ -42,6 +45,16 @@ const Option<RunOptions>& window_option() {
       "jitter in slow motion with 4. A frame then depends on its neighbours: give a farm chunk "
       "the whole sequence and its range with --frames",
       NumberOption<O, int>{&O::window, 0, kMaxWindow}};
+  return option;
+}
+
+const Option<RunOptions>& window_ends_option() {
+  static const Option<RunOptions> option = {
+      "window-ends",
+      "With --window: one-sided: the first and last frames' windows end with the sequence; "
+      "cycle: the sequence is a loop (a walk cycle, its last frame followed by its first), and "
+      "the windows wrap around, so that the loop's seam is smoothed too",
+      word_option(&RunOptions::window_ends, kWindowEnds)};
   return option;
 }
 

@@ -22,6 +22,10 @@ namespace skinslide {
 /// a second; a slide that still jumps at that width is not the jitter a window smooths.
 constexpr int kMaxWindow = 100;
 
+/// Where a window's frames stop (--window-ends): at the sequence's first and last frames, whose
+/// windows are then one-sided; or around a loop, the last frame followed by the first.
+enum class WindowEnds { OneSided, Cycle };
+
 /// What a run reads, writes and how it slides: the command line's options (README "Options") as
 /// plain data, after the command line's own checks (conflicting options, ranges). Paths as given.
 struct RunOptions {
@@ -56,6 +60,7 @@ struct RunOptions {
   /// --window N (elastic): each frame written at the mean of its own and its N neighbours' slides
   /// on each side (pipeline/frame_window.h); 0: each frame its own.
   int window = 0;
+  WindowEnds window_ends = WindowEnds::OneSided;  ///< --window-ends
   // Controls (README "Controls"), read after the bind: their ids are checked against it.
   std::string weights;                      ///< --weights file; empty = none
   std::string weights_from_obj_color;       ///< "r", "g" or "b" of the OBJ bind; empty = none
@@ -92,5 +97,9 @@ const Option<RunOptions>& method_option();
 /// not in the table, whose options the Python module's one-frame Slider takes; its
 /// slide_sequence takes this one (skinslide.h), the add-on's property is made from it.
 const Option<RunOptions>& window_option();
+
+/// --window-ends one-sided|cycle: RunOptions::window_ends, beside window_option and like it out of
+/// the table.
+const Option<RunOptions>& window_ends_option();
 
 }  // namespace skinslide

@@ -308,8 +308,10 @@ class Slider {
 
   // A sequence's frames, each (vertices, 3); with a window, each written at the mean of its own
   // and its neighbours' relaxations (skinslide.h slide_sequence).
-  py::tuple slide_sequence(const py::handle& frames, int window, bool edge_spread,
-                           unsigned threads) const {
+  py::tuple slide_sequence(const py::handle& frames, int window, const std::string& window_ends,
+                           bool edge_spread, unsigned threads) const {
+    RunOptions ends;  // the word checked and read as the command line reads it
+    std::get<WordOption<RunOptions>>(window_ends_option().value).set(ends, window_ends);
     std::vector<DoubleArray> in;
     for (const py::handle f : frames) in.push_back(points(f, "each frame"));
     const auto count = static_cast<py::ssize_t>(in.size());
@@ -324,7 +326,8 @@ class Slider {
     std::vector<std::vector<PatchFrameReport>> reports;
     {
       py::gil_scoped_release released;
-      reports = skinslide::slide_sequence(*setup_, xyz, result, window, edge_spread, threads);
+      reports = skinslide::slide_sequence(*setup_, xyz, result, window, edge_spread, threads,
+                                          ends.window_ends);
     }
     py::list list;
     for (const auto& r : reports) list.append(frame_report(r, edge_spread));
@@ -396,12 +399,15 @@ PYBIND11_MODULE(skinslide, m) {
            "the GIL: frames may be slid from several threads at once. edge_spread: report each "
            "patch's edge-length spread in the frame and slid (about 5% more time).")
       .def("slide_sequence", &Slider::slide_sequence, py::arg("frames"), py::kw_only(),
-           py::arg("window") = RunOptions{}.window, py::arg("edge_spread") = false,
-           py::arg("threads") = 1u,
+           py::arg("window") = RunOptions{}.window,
+           py::arg("window_ends") =
+               std::get<WordOption<RunOptions>>(window_ends_option().value).get(RunOptions{}),
+           py::arg("edge_spread") = false, py::arg("threads") = 1u,
            "Slides a sequence of frames (each (vertices, 3)): returns (positions (frames, "
            "vertices, 3), reports). window N (elastic): each frame written at the mean of its "
            "own and its N neighbours' slides on each side, as the command line's --window; 0: "
-           "each frame slide()'s. threads: frames slid at once (the same bits for any count). "
+           "each frame slide()'s. window_ends 'cycle': the sequence is a loop, the windows wrap "
+           "around (--window-ends). threads: frames slid at once (the same bits for any count). "
            "Releases the GIL.")
       .def_property_readonly("vertex_count", &Slider::vertex_count)
       .def_property_readonly("method", &Slider::method)
@@ -415,9 +421,15 @@ PYBIND11_MODULE(skinslide, m) {
       py::arg("method") = method_name(SlideOptions{}),
       "The method's options with their defaults, as Slider takes them (and 'method').");
   m.def(
-      "window_spec", [] { return option_spec(window_option(), method_name(ElasticOptions{})); },
-      "The window slide_sequence takes, declared as option_specs() declares an option: the "
-      "command line's --window.");
+      "sequence_option_specs",
+      [] {
+        py::list specs;
+        for (const auto* option : {&window_option(), &window_ends_option()})
+          specs.append(option_spec(*option, method_name(ElasticOptions{})));
+        return specs;
+      },
+      "The options slide_sequence takes (window, window_ends), declared as option_specs() "
+      "declares the Slider's: the command line's --window and --window-ends.");
   m.def("option_specs", &option_specs,
         "Every option Slider takes, as the command line declares it: a dict each with name, "
         "option (the command line's), method (None: either), type ('int', 'float' or 'word'), "

@@ -614,6 +614,19 @@ expect window_broken_neighbour 3 "win.0001.obj: its --window neighbour $tmp/win.
 ls "$tmp/out/window_broken_neighbour" 2>/dev/null | tr '\n' ' ' >"$tmp/written"
 [ "$(cat "$tmp/written")" = "win.0005.obj " ] || fail "window_broken_neighbour wrote: $(cat "$tmp/written")"
 grep -qF "1 frames slid, 3 failed" "$tmp/stderr" || fail "window_broken_neighbour: not '1 frames slid, 3 failed'"
+# --window-ends without a window, another word, or with the paper method: usage errors. A loop's
+# windows wrap around: a broken frame 1 fails frame 5 too (beside it in the loop); frame 3 (its
+# neighbours 2 and 5) is written.
+expect window_ends_without_window 2 "--window-ends: says where --window's frames end: give --window N too" --window-ends cycle --patch $P $B $F
+expect window_ends_unknown_word 2 "--window-ends: loop not in {one-sided,cycle}" --window 1 --window-ends loop --patch $P $B $F
+expect window_ends_paper 2 "--window-ends: applies to --method elastic only, not to --method paper" --method paper --window-ends cycle --patch $P $B $F
+cp "$tmp/nan.0001.obj" "$tmp/cyc.0001.obj"
+cp $F "$tmp/cyc.0002.obj"
+cp grid.0002.obj "$tmp/cyc.0003.obj"
+cp $F "$tmp/cyc.0005.obj"
+expect window_cycle_broken_neighbour 3 "cyc.0005.obj: its --window neighbour $tmp/cyc.0001.obj:7: vertex coordinate 'nan' is not finite" --keep-going --window 1 --window-ends cycle -j 1 --patch $P $B "$tmp/cyc.0001.obj" "$tmp/cyc.0002.obj" "$tmp/cyc.0003.obj" "$tmp/cyc.0005.obj"
+ls "$tmp/out/window_cycle_broken_neighbour" 2>/dev/null | tr '\n' ' ' >"$tmp/written"
+[ "$(cat "$tmp/written")" = "cyc.0003.obj " ] || fail "window_cycle_broken_neighbour wrote: $(cat "$tmp/written")"
 
 # --- config files (--config): every key an option, every value checked as on the command line ---
 printf '# a shot\nmethd = "paper"\npatch = ["all.txt"]\n' >"$tmp/typo.toml"

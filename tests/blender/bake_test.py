@@ -96,7 +96,7 @@ def played_back(obj, frame):
                                                len(obj.data.vertices))
 
 
-def command_slide(grid, method, case, window):
+def command_slide(grid, method, case, window, ends):
     """The command line on the frames Blender evaluated (float32, written exactly): OBJ files,
     and the same frames as a PC2 (startFrame the first frame, rate 1). Returns the frame OBJs."""
     s = grid.skinslide
@@ -117,7 +117,7 @@ def command_slide(grid, method, case, window):
     # The strength as the add-on holds it: a Blender float property is a float32 (0.9 is
     # 0.8999999761581421), and the command must get those bits to give the add-on's.
     strength = repr(float(s.strength))
-    windowed = ["--window", str(window)] if window else []
+    windowed = ["--window", str(window), "--window-ends", ends] if window else []
     for source in (frames, [case / "shot.pc2"]):
         subprocess.run([skinslide_bin, "-q", "--method", method, *windowed,
                         "--patch", case / "patch.txt",
@@ -127,14 +127,17 @@ def command_slide(grid, method, case, window):
     return frames
 
 
-def check(grid, method, bake_to, folder, window=0):
+def check(grid, method, bake_to, folder, window=0, ends="one-sided", panel_window=None):
+    """Bakes with the panel's window `panel_window` (default `window`) and compares with the
+    command given `window`."""
     s = grid.skinslide
     s.method, s.pin_group, s.weight_group, s.strength = method, "pins", "slide", 0.9
-    s.bake_to, s.cache_folder, s.window = bake_to, folder, window
+    s.bake_to, s.cache_folder, s.window_ends = bake_to, folder, ends
+    s.window = window if panel_window is None else panel_window
     assert bpy.ops.object.skinslide_bake() == {"FINISHED"}, method
     copy = bpy.data.objects[grid.name + skinslide_addon.SLID_SUFFIX]
-    case = work / f"{method}_{bake_to}_window{window}"
-    frames = command_slide(grid, method, case, window)
+    case = work / f"{method}_{bake_to}_window{window}_{ends}"
+    frames = command_slide(grid, method, case, window, ends)
     if bake_to == "PC2":
         check_cache(copy, case, folder)
     else:
@@ -155,7 +158,7 @@ def check(grid, method, bake_to, folder, window=0):
         assert error <= 1e-6 * diagonal, f"{method} frame {frame}: off by {error}"
         moved = max(moved, np.abs(expected - played_back(grid, frame)).max())
     assert moved > 1e-3 * diagonal, f"{method}: the skin slid ({moved})"
-    print(f"bake_test: {method}, {bake_to}, window {window}: {len(FRAMES)} frames played back as the command slid "
+    print(f"bake_test: {method}, {bake_to}, window {window} {ends}: {len(FRAMES)} frames played back as the command slid "
           f"them: largest difference {error:.3g} ({error / diagonal:.3g} of the diagonal; largest "
           f"slide {moved:.4g})")
 
@@ -194,6 +197,9 @@ bpy.ops.wm.save_as_mainfile(filepath=str(work / "scene.blend"))
 check(grid, "paper", "PC2", "")  # beside the .blend
 check(grid, "elastic", "SHAPE_KEYS", "")
 check(grid, "elastic", "PC2", "", window=2)  # the command's --window over the same frames
+check(grid, "elastic", "SHAPE_KEYS", "", window=1, ends="cycle")  # and --window-ends cycle
+# A window left set on the panel is the elastic method's: paper bakes as the command without it.
+check(grid, "paper", "PC2", "", panel_window=3, ends="cycle")
 # An error is Blender's report, not a crash: a patch of no faces.
 for p in grid.data.polygons:
     p.select = False

@@ -42,7 +42,8 @@ r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "bind", "patch_files", "options", "controls", "patches", "frames",
                    "totals", "timings"], list(r)
 assert r["options"] == {"method": "elastic", "rotation_fits": 3, "max_iterations": 100, "tolerance": 3e-4,
-                        "convergence": 0.05, "blend": 0, "ease_in": 0, "window": 0}, r["options"]
+                        "convergence": 0.05, "blend": 0, "ease_in": 0, "window": 0,
+                        "window_ends": "one-sided"}, r["options"]
 assert list(r["patches"][0]) == ["faces", "vertices", "free", "pinned", "moving", "loops",
                                  "outer_loop_start", "outer_loop_chosen", "skipped",
                                  "chart_weights"], list(r["patches"][0])
@@ -100,6 +101,16 @@ moved = [f["patches"][0]["energy_after"] != g["patches"][0]["energy_after"]
          for f, g in zip(w["frames"][1:], r["frames"][1:])]
 assert all(moved), "every moving frame is written at its window's mean, not at its own slide"
 assert w["totals"]["window_returned"] == sum(f["patches"][0]["window_returned"] for f in w["frames"])
+PY
+# --window-ends cycle: the log line and the report say the windows go around a loop.
+"$bin" -j 1 --window 2 --window-ends cycle --report "$tmp/wc.json" "${elbow[@]}" -o "$tmp/wc" \
+  2>"$tmp/wc.log"
+check "--window-ends cycle: the bind's log line names the loop" \
+  grep -qF "288 sliding vertices (method elastic, window 2 around a loop)" "$tmp/wc.log"
+check "--window-ends cycle: the report's options" $py - "$tmp/wc.json" "$tmp/w.json" <<'PY'
+import json, sys
+c, w = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert c["options"] == dict(w["options"], window_ends="cycle"), c["options"]
 PY
 check "the report (--method paper) is JSON with the documented keys" $py - "$tmp/p1.json" <<'PY'
 import json, sys

@@ -2,7 +2,8 @@
 # Identical bytes on every farm: outputs do not depend on --threads (1, 2, 8), on running the
 # frames all together, one at a time or in reverse order, on which run it is, nor on splitting a
 # shot into --frames chunks run side by side (xargs -P) as a render farm does, as OBJ frames or
-# as a point cache whose chunks are joined (`skinslide join`); with --window too. And a run killed
+# as a point cache whose chunks are joined (`skinslide join`); with --window (and a loop's
+# --window-ends cycle) too. And a run killed
 # with SIGKILL leaves each output either as it was before or complete, never partial. The default
 # method (elastic) throughout; thread counts, order and the farm split with --method paper too.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/farm.sh
@@ -147,6 +148,23 @@ check "--window 2: the joined chunks are the one-task cache, byte for byte" \
   cmp "$tmp/wcache1/shot.pc2" "$tmp/wcachefarm/shot.pc2"
 check "--window 2: the cache is not the one without a window" \
   bash -c "! cmp -s '$tmp/cache1/shot.pc2' '$tmp/wcache1/shot.pc2'"
+# --window-ends cycle: the shot is a loop, frame 24 followed by frame 1. Only the windows that
+# reach past an end change: frames 2, 23 and 24 (reach 2; frame 1 is data/elbow's frame at the
+# bind, written as it is either way); the rest are the one-sided run's.
+check "--window-ends cycle, --threads 1" slide --window 2 --window-ends cycle -j 1 -o "$tmp/c1" "${frames[@]}"
+check "--window-ends cycle, reversed, --threads 8" \
+  slide --window 2 --window-ends cycle -j 8 -o "$tmp/crev" "${reversed[@]}"
+check "--window-ends cycle: reversed and 8 threads give identical bytes" same_tree "$tmp/c1" "$tmp/crev" 24
+check "--window-ends cycle: the chunks run side by side (xargs -P 3)" \
+  xargs -P 3 -I RANGE "$bin" -q -j 1 --window 2 --window-ends cycle --frames RANGE \
+  -o "$tmp/cfarm" --patch data/elbow/patch.txt data/elbow/bind.obj "${frames[@]}" <"$tmp/chunks"
+check "--window-ends cycle: the farm split gives the whole run's bytes" same_tree "$tmp/c1" "$tmp/cfarm" 24
+for f in 0002 0023 0024; do
+  check "--window-ends cycle: frame $f (its window wraps) differs from one-sided" \
+    bash -c "! cmp -s '$tmp/w1/arm.$f.obj' '$tmp/c1/arm.$f.obj'"
+done
+check "--window-ends cycle: frames 3-22 are the one-sided run's" bash -c \
+  "for f in \$(seq -f '%04g' 3 22); do cmp -s '$tmp/w1/arm.'\$f'.obj' '$tmp/c1/arm.'\$f'.obj' || exit 1; done"
 
 # --- SIGKILL mid-run ----------------------------------------------------------------------------
 # The output folder starts with an older complete version of every output (the unslid frame).

@@ -34,6 +34,26 @@ TEST(FrameWindow, WeightsFallFromTheFrameAndAreRenormalisedWhereTheSequenceEnds)
   EXPECT_EQ(pairs(window_of(ordered_window_plan(3, 1), 0)), (P{{0, 1.0}}));
 }
 
+TEST(FrameWindow, ACycleWrapsTheWindowsAroundTheSequencesEnds) {
+  WindowPlan plan = ordered_window_plan(2, 10);
+  plan.cycle = true;
+  using P = std::vector<std::pair<std::size_t, double>>;
+  EXPECT_EQ(pairs(window_of(plan, 5)),
+            (P{{3, 1 / 9.0}, {4, 2 / 9.0}, {5, 3 / 9.0}, {6, 2 / 9.0}, {7, 1 / 9.0}}));
+  EXPECT_EQ(pairs(window_of(plan, 0)),
+            (P{{8, 1 / 9.0}, {9, 2 / 9.0}, {0, 3 / 9.0}, {1, 2 / 9.0}, {2, 1 / 9.0}}));
+  EXPECT_EQ(pairs(window_of(plan, 9)),
+            (P{{7, 1 / 9.0}, {8, 2 / 9.0}, {9, 3 / 9.0}, {0, 2 / 9.0}, {1, 1 / 9.0}}));
+  // A loop shorter than the window: each frame counted once, its weights summed.
+  WindowPlan short_loop = ordered_window_plan(2, 2);
+  short_loop.cycle = true;
+  EXPECT_EQ(pairs(window_of(short_loop, 0)), (P{{0, 5 / 9.0}, {1, 4 / 9.0}}));
+  // Files ordered by number: the loop closes from the highest number to the lowest.
+  WindowPlan files = files_window_plan(1, {"a.0003.obj", "a.0001.obj", "a.0002.obj"});
+  files.cycle = true;
+  EXPECT_EQ(pairs(window_of(files, 0)), (P{{2, 1 / 4.0}, {0, 2 / 4.0}, {1, 1 / 4.0}}));
+}
+
 TEST(FrameWindow, FilesAreOrderedByTheirFrameNumbersNotTheOrderGiven) {
   const WindowPlan plan = files_window_plan(1, {"s/a.0010.obj", "s/a.0002.obj", "s/a.0007.obj"});
   EXPECT_EQ(plan.order, (std::vector<std::size_t>{1, 2, 0}));

@@ -295,6 +295,9 @@ def build(seed, meshes, ctx):
     if case.method == "elastic" and not case.no_slide and "--window" in ctx.options and \
             random.Random(seed ^ 0x3A1D0).random() < 0.2:
         case.window = random.Random(seed ^ 0x3A1D1).choice([1, 2, 4])
+    # --window-ends cycle (a loop: the windows wrap around the sequence's ends) in a third of them
+    case.window_cycle = bool(case.window) and "--window-ends" in ctx.options and \
+        random.Random(seed ^ 0x3A1D2).random() < 1 / 3
     return case
 
 
@@ -388,6 +391,8 @@ def write(case, folder):
         args.append("--require-converged")
     if getattr(case, "window", 0):
         args += ["--window", str(case.window)]
+    if getattr(case, "window_cycle", False):
+        args += ["--window-ends", "cycle"]
     if case.config:
         # some options from a TOML file instead (README "Controls": --config); the command line
         # keeps the rest
@@ -773,10 +778,13 @@ def _sequence(case):
 
 
 def _window(case, frame):
-    """The frames within --window of `frame` in the sequence (itself alone without a window)."""
+    """The frames within --window of `frame` in the sequence (itself alone without a window),
+    around the loop with --window-ends cycle."""
     reach = getattr(case, "window", 0)
     seq = _sequence(case)
     at = next(k for k, f in enumerate(seq) if f is frame)
+    if getattr(case, "window_cycle", False):
+        return [seq[(at + k) % len(seq)] for k in range(-reach, reach + 1)]
     return seq[max(0, at - reach):at + reach + 1]
 
 
@@ -1363,7 +1371,8 @@ def describe(case):
     lines = [f"seed {case.seed}: " + "; ".join(case.notes)]
     lines.append(f"method {case.method}, mode {case.mode}, options {case.options}"
                  f"{' --require-converged' if getattr(case, 'require_converged', False) else ''}"
-                 f"{' --window %d' % case.window if getattr(case, 'window', 0) else ''}, pins "
+                 f"{' --window %d' % case.window if getattr(case, 'window', 0) else ''}"
+                 f"{' --window-ends cycle' if getattr(case, 'window_cycle', False) else ''}, pins "
                  f"{None if case.pins is None else len(case.pins)}, weights "
                  f"{'file' if case.weight_file else case.colour_channel}, strength {case.strength}")
     if case.frames_spec:

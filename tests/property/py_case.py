@@ -47,6 +47,7 @@ def build(seed, meshes, ctx):
     # files by number, a cache's samples); a clip's frames are the module's own, slid one by one.
     if case.mode == "animation":
         case.window = 0
+        case.window_cycle = False
     rng = random.Random(seed ^ 0x5EED)
     case.py_usage = None
     case.py_input = None
@@ -173,7 +174,8 @@ def run_case(seed, meshes, ctx, folder):
             "method": case.method, "threads": case.threads, "options": case.py_options,
             "frame_count": len(case.py_frames), "frame_form": case.frame_form,
             "edge_spread": case.edge_spread, "pool": case.pool, "mangle": case.mangle,
-            "window": case.window}
+            "window": case.window,
+            "window_ends": "cycle" if getattr(case, "window_cycle", False) else "one-sided"}
     (folder / "spec.json").write_text(json.dumps(spec, indent=1))
     argv = ["/usr/bin/python3", os.path.join(HERE, "py_worker.py"), "spec.json"]
     env = dict(os.environ)
@@ -327,5 +329,6 @@ def describe(case):
             f"patches {case.patch_form}{' (one list)' if case.single_patch else ''}, frames "
             f"{case.frame_form}, options {case.py_options}, edge_spread {case.edge_spread}, "
             f"pool {case.pool}, mangled {case.mangle}"
-            f"{', slide_sequence window %d' % case.window if case.window else ''}; "
+            f"{', slide_sequence window %d' % case.window if case.window else ''}"
+            f"{' cycle' if getattr(case, 'window_cycle', False) else ''}; "
             f"expected {expected(case)[1]}")

@@ -101,6 +101,7 @@ def main():
         reports = []
         if window:  # one sequence, each frame with its neighbours' slides
             slid, reports = slider.slide_sequence(frames, window=window,
+                                                  window_ends=spec["window_ends"],
                                                   edge_spread=spec["edge_spread"])
             for k in range(len(frames)):
                 out[f"out{k}"] = slid[k]
@@ -112,7 +113,8 @@ def main():
         result["reports"] = reports
         if spec["pool"] and frames:
             if window:
-                again = list(slider.slide_sequence(frames, window=window, threads=3)[0])
+                again = list(slider.slide_sequence(frames, window=window,
+                                                   window_ends=spec["window_ends"], threads=3)[0])
             else:
                 with concurrent.futures.ThreadPoolExecutor(max_workers=3) as pool:
                     again = list(pool.map(lambda f: slider.slide(f)[0], frames))

@@ -80,21 +80,23 @@ def test_a_thread_pool_gives_the_bits_of_a_serial_run():
     assert parallel == serial
 
 
-@pytest.mark.parametrize("window", [1, 3])
-def test_a_windowed_sequence_slides_to_the_commands_bits(window, cli, tmp_path):
+@pytest.mark.parametrize("window,ends", [(1, "one-sided"), (3, "one-sided"), (2, "cycle")])
+def test_a_windowed_sequence_slides_to_the_commands_bits(window, ends, cli, tmp_path):
     bind, patch = DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt"
     frames = sorted((DATA / "elbow" / "frames").glob("*.obj"))
-    cli("--window", str(window), "--patch", patch, bind, *frames, "-o", tmp_path)
+    cli("--window", str(window), "--window-ends", ends, "--patch", patch, bind, *frames,
+        "-o", tmp_path)
     slider = slider_from_files(bind, patch)
     poses = [frame_positions(f) for f in frames]
-    serial, reports = slider.slide_sequence(poses, window=window)
+    serial, reports = slider.slide_sequence(poses, window=window, window_ends=ends)
     assert serial.shape == (len(frames), slider.vertex_count, 3)
     for k, frame in enumerate(frames):
         assert serial[k].tobytes() == obj_positions(tmp_path / frame.name).tobytes(), frame.name
     assert all("window_returned" in p for r in reports for p in r["patches"])
     alone = [slider.slide(f)[0].tobytes() for f in poses]
     assert [s.tobytes() for s in serial] != alone, "the window changes the slide"
-    threaded, _ = slider.slide_sequence(np.stack(poses), window=window, threads=4)
+    threaded, _ = slider.slide_sequence(np.stack(poses), window=window, window_ends=ends,
+                                        threads=4)
     assert threaded.tobytes() == serial.tobytes(), "any thread count, one (F, V, 3) array too"
 
 
@@ -115,11 +117,18 @@ def test_a_sequence_is_refused_with_its_fault_named():
     paper = slider_from_files(DATA / "elbow" / "bind.obj", DATA / "elbow" / "patch.txt",
                               method="paper")
     pose = frame_positions(DATA / "elbow" / "frames" / "elbow.0005.obj")
+    window, ends = skinslide.sequence_option_specs()
     with pytest.raises(skinslide.UsageError, match=r"window 101 is out of its range \[0, 100\]"):
-        elastic.slide_sequence([pose], window=skinslide.window_spec()["max"] + 1)
-    assert skinslide.window_spec() | {"help": ""} == {
+        elastic.slide_sequence([pose], window=window["max"] + 1)
+    assert window | {"help": ""} == {
         "name": "window", "option": "--window", "method": "elastic", "type": "int", "default": 0,
         "min": 0, "max": 100, "help": ""}
+    assert (ends["name"], ends["default"], ends["choices"]) == \
+        ("window_ends", "one-sided", ["one-sided", "cycle"])
+    with pytest.raises(skinslide.UsageError, match="unknown window end 'loop' .one-sided, cycle."):
+        elastic.slide_sequence([pose], window=1, window_ends="loop")
+    with pytest.raises(skinslide.UsageError, match="cycle ends .* give a window too"):
+        elastic.slide_sequence([pose], window_ends="cycle")
     with pytest.raises(skinslide.UsageError, match="window -1"):
         elastic.slide_sequence([pose], window=-1)
     with pytest.raises(skinslide.UsageError, match="elastic method's; .* paper method"):

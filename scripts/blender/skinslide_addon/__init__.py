@@ -91,10 +91,11 @@ class SkinslideSettings(bpy.types.PropertyGroup):
         description="Where the PC2 goes (<object>_slid.pc2); empty: beside the .blend")
 
 
-# The window over the range's neighbouring frames (--window), declared by the module as well.
-WINDOW_SPEC = skinslide.window_spec() if skinslide is not None else None
+# The window over the range's neighbouring frames (--window, --window-ends), declared by the
+# module as well: what slide_sequence takes.
+SEQUENCE_SPECS = skinslide.sequence_option_specs() if skinslide is not None else []
 
-for _spec in OPTION_SPECS + ([WINDOW_SPEC] if WINDOW_SPEC else []):
+for _spec in OPTION_SPECS + SEQUENCE_SPECS:
     SkinslideSettings.__annotations__[_spec["name"]] = _option_property(_spec)
 
 
@@ -164,18 +165,21 @@ def make_slider(obj, s):
                             **controls, **slider_options(s))
 
 
-def window(s):
-    """The settings' window: the elastic method's only (the command line refuses it with the
-    paper's)."""
-    return s.window if WINDOW_SPEC and s.method == WINDOW_SPEC["method"] else 0
+def sequence_options(s):
+    """The settings' window and where it ends, when the method takes them and a window is set
+    (the command line refuses them with the paper method, and --window-ends without --window)."""
+    if not SEQUENCE_SPECS or any(spec["method"] != s.method for spec in SEQUENCE_SPECS) or \
+            s.window == 0:
+        return {}
+    return {spec["name"]: getattr(s, spec["name"]) for spec in SEQUENCE_SPECS}
 
 
-def slide_poses(slider, poses, width, wm):
+def slide_poses(slider, poses, sequence, wm):
     """The range's poses slid, each to the bits of a serial slide: frame by frame on every core
     (the module releases the GIL), or as one sequence with a window over the neighbouring frames
-    (the command line's --window on the same frames)."""
-    if width > 0:
-        return list(slider.slide_sequence(poses, window=width, threads=os.cpu_count() or 1)[0])
+    (the command line's --window and --window-ends on the same frames)."""
+    if sequence:
+        return list(slider.slide_sequence(poses, threads=os.cpu_count() or 1, **sequence)[0])
     slid = [None] * len(poses)
     with concurrent.futures.ThreadPoolExecutor(os.cpu_count() or 1) as pool:
         jobs = {pool.submit(slider.slide, pose): k for k, pose in enumerate(poses)}
@@ -276,7 +280,7 @@ class SKINSLIDE_OT_bake(bpy.types.Operator):
                 poses.append(evaluated_positions(obj, context.evaluated_depsgraph_get(),
                                                  slider.vertex_count))
                 wm.progress_update(k + 1)
-            slid = slide_poses(slider, poses, window(s), wm)
+            slid = slide_poses(slider, poses, sequence_options(s), wm)
             baked = bake_result(context, obj, frames, slid, path)
         except (skinslide.Error, ValueError, OSError) as e:
             self.report({"ERROR"}, f"skinslide: {e}")
@@ -319,8 +323,9 @@ class SKINSLIDE_PT_panel(bpy.types.Panel):
         for spec in OPTION_SPECS:  # strength, method, then the chosen method's options
             if spec["method"] in (None, s.method):
                 col.prop(s, spec["name"])
-        if WINDOW_SPEC and s.method == WINDOW_SPEC["method"]:
-            col.prop(s, WINDOW_SPEC["name"])
+        for spec in SEQUENCE_SPECS:  # the window over the range and its ends
+            if spec["method"] == s.method:
+                col.prop(s, spec["name"])
         col.separator()
         col.prop(s, "use_scene_range")
         row = col.row(align=True)
