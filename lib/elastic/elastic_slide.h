@@ -42,6 +42,9 @@ struct ElasticReport {
   /// With a window over the neighbouring frames (window_mean.h): vertices written at the frame's
   /// own slide instead of the window's mean, to keep every slid triangle facing the frame's.
   int window_returned = 0;
+  /// The frame's own relaxation's energy: energy_after, or with a window what its mean is
+  /// written instead of (told on the frame's line when the mean costs much more).
+  double energy_own = 0;
   std::string stop;  ///< why the relaxation stopped; empty: the patch was skipped
 };
 

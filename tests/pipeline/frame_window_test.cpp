@@ -199,6 +199,24 @@ TEST(FrameWindow, AWindowedFrameKeepsEveryPromiseOfAFrameAlone) {
   }
 }
 
+TEST(FrameWindow, AMeanThatCostsTheFrameMuchEnergyIsToldOnItsLine) {
+  const ElbowRun run;
+  ElasticReport report;
+  report.stop = "converged";
+  report.energy_before = 1;
+  report.energy_own = 0.2;
+  const auto line = [&](double written) {
+    report.energy_after = written;
+    return frame_summary(
+        run.setup.patches, [&](std::size_t) -> const ElasticReport& { return report; }, "");
+  };
+  const std::string told = ", 20% without the window (its frames differ too much to share a mean)";
+  EXPECT_NE(line(0.5).find(told), std::string::npos) << line(0.5);
+  EXPECT_EQ(line(0.29).find("without the window"), std::string::npos)
+      << "nine points of energy left are not told: " << line(0.29);
+  EXPECT_EQ(line(0.2).find("without the window"), std::string::npos) << "no window, or no cost";
+}
+
 TEST(FrameWindow, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
   const ElbowRun run;
   const std::size_t f = 2;
