@@ -381,8 +381,7 @@ Options with_words(Options options, const std::map<std::string, std::string>& wo
 
 RunOptions run_options(const CliOptions& o) {
   RunOptions r = with_words(o.run, o.words);  // the method named, with its defaults
-  std::get<WordOption<RunOptions>>(window_ends_option().value)
-      .set(r, o.words.at(window_ends_option().name));
+  r.window_ends = window_ends_named(o.words.at(window_ends_option().name));
   if (o.has_rig)
     r.rig = o.rig;
   else if (r.format == "mdd")

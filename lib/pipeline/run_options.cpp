@@ -48,6 +48,9 @@ const Option<RunOptions>& window_option() {
   return option;
 }
 
+WindowEnds window_ends_named(const std::string& word) { return kWindowEnds.value(word); }
+std::string window_ends_name(WindowEnds ends) { return kWindowEnds.name(ends); }
+
 const Option<RunOptions>& window_ends_option() {
   static const Option<RunOptions> option = {
       "window-ends",

@@ -102,4 +102,10 @@ const Option<RunOptions>& window_option();
 /// the table.
 const Option<RunOptions>& window_ends_option();
 
+/// The window ends a word of --window-ends names. \throw Error(Usage) "unknown window end 'W'
+/// (one-sided, cycle)".
+WindowEnds window_ends_named(const std::string& word);
+/// The word --window-ends names `ends` by.
+std::string window_ends_name(WindowEnds ends);
+
 }  // namespace skinslide

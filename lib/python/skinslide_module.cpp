@@ -310,8 +310,7 @@ class Slider {
   // and its neighbours' relaxations (skinslide.h slide_sequence).
   py::tuple slide_sequence(const py::handle& frames, int window, const std::string& window_ends,
                            bool edge_spread, unsigned threads) const {
-    RunOptions ends;  // the word checked and read as the command line reads it
-    std::get<WordOption<RunOptions>>(window_ends_option().value).set(ends, window_ends);
+    const WindowEnds ends = window_ends_named(window_ends);  // as the command line reads it
     std::vector<DoubleArray> in;
     for (const py::handle f : frames) in.push_back(points(f, "each frame"));
     const auto count = static_cast<py::ssize_t>(in.size());
@@ -326,8 +325,7 @@ class Slider {
     std::vector<std::vector<PatchFrameReport>> reports;
     {
       py::gil_scoped_release released;
-      reports = skinslide::slide_sequence(*setup_, xyz, result, window, edge_spread, threads,
-                                          ends.window_ends);
+      reports = skinslide::slide_sequence(*setup_, xyz, result, window, edge_spread, threads, ends);
     }
     py::list list;
     for (const auto& r : reports) list.append(frame_report(r, edge_spread));
@@ -400,8 +398,7 @@ PYBIND11_MODULE(skinslide, m) {
            "patch's edge-length spread in the frame and slid (about 5% more time).")
       .def("slide_sequence", &Slider::slide_sequence, py::arg("frames"), py::kw_only(),
            py::arg("window") = RunOptions{}.window,
-           py::arg("window_ends") =
-               std::get<WordOption<RunOptions>>(window_ends_option().value).get(RunOptions{}),
+           py::arg("window_ends") = window_ends_name(RunOptions{}.window_ends),
            py::arg("edge_spread") = false, py::arg("threads") = 1u,
            "Slides a sequence of frames (each (vertices, 3)): returns (positions (frames, "
            "vertices, 3), reports). window N (elastic): each frame written at the mean of its "
