@@ -63,7 +63,8 @@ struct ElasticTotals {
 
 /// A frame's log summary: the most steps of any patch, the energy left as a share of the frame's,
 /// the flips, `max_slide` (", max slide X") among them, the vertices written at their own slide
-/// instead of --window's mean (when any). `report(p)`: patch p's report.
+/// instead of --window's mean (when any), and the energy left without the window where its mean
+/// costs ten points or more (kWindowCostTold). `report(p)`: patch p's report.
 std::string frame_summary(const std::vector<Patch>& patches,
                           const std::function<const ElasticReport&(std::size_t)>& report,
                           const std::string& max_slide);

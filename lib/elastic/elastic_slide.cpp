@@ -79,7 +79,7 @@ ElasticSlide elastic_written(const ElasticSetup& setup, const Patch& patch,
   report.held = relaxed.held;
   report.gain_left = relaxed.gain_left;
   report.window_returned = relaxed.window_returned;
-  report.energy_own = relaxed.energy_own < 0 ? relaxed.energy_after : relaxed.energy_own;
+  report.energy_own = relaxed.energy_after;
   report.stop = stop_name(relaxed.stop);
   const Chart& chart = setup.chart;
   slid.net = patch.bind_net;

@@ -119,9 +119,6 @@ struct ElasticResult {
   double gain_left = 0;
   /// window_mean.h: vertices written at this frame's own relaxation instead of the window's mean.
   int window_returned = 0;
-  /// window_mean.h: the frame's own relaxation's energy_after, which the window's mean is written
-  /// instead of; negative without a window.
-  double energy_own = -1;
   ElasticStop stop = ElasticStop::Converged;
 };
 

@@ -160,7 +160,6 @@ ElasticResult window_mean(const ElasticSetup& setup, const Positions3& frame,
     }
     r.window_returned = static_cast<int>(own.uv.size());
   }
-  r.energy_own = own.energy_after;
   return r;
 }
 

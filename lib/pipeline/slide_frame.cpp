@@ -59,6 +59,9 @@ MethodSlide windowed_patch(const BindSetup& setup, std::size_t p, const Patch& p
   ElasticSlide slide =
       elastic_written(elastic, patch, points, setup.weight, written, id_image_size);
   slide.slid.solve_seconds = window.own->seconds[p];
+  // The energy of the frame's own relaxation, in whose place the mean is written: the frame's
+  // line compares the two.
+  slide.report.energy_own = window.own->patches[p].energy_after;
   return {std::move(slide.slid), std::move(slide.report)};
 }
 
