@@ -217,12 +217,17 @@ TEST(FrameWindow, AMeanThatCostsTheFrameMuchEnergyIsToldOnItsLine) {
   EXPECT_EQ(line(0.2).find("without the window"), std::string::npos) << "no window, or no cost";
 }
 
-TEST(FrameWindow, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
+// window_mean's inputs for data/elbow's frame 2: its patch positions, set-up and own relaxation.
+class WindowMeanOfFrame2 : public ::testing::Test {
+ protected:
   const ElbowRun run;
   const std::size_t f = 2;
   const Positions3 points = run.patch_points(f);
   const ElasticSetup& elastic = run.elastic();
   const ElasticResult& own = run.relaxed[f].patches[0];
+};
+
+TEST_F(WindowMeanOfFrame2, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
   const Positions2 neighbours = chart_point_mean(
       {{&run.relaxed[1].patches[0].uv, 0.5}, {&run.relaxed[3].patches[0].uv, 0.5}});
   // Corner a of one triangle driven in small steps across its opposite edge: the triangle folds
@@ -258,12 +263,7 @@ TEST(FrameWindow, AFoldStartingInTheMeanMovesTheWrittenSlideByNoJump) {
   EXPECT_GT(returned_steps, kSteps / 4) << "the fold is met on the way";
 }
 
-TEST(FrameWindow, AMeanRisingAboveTheFramesEnergyIsLeftByNoJump) {
-  const ElbowRun run;
-  const std::size_t f = 2;
-  const Positions3 points = run.patch_points(f);
-  const ElasticSetup& elastic = run.elastic();
-  const ElasticResult& own = run.relaxed[f].patches[0];
+TEST_F(WindowMeanOfFrame2, AMeanRisingAboveTheFramesEnergyIsLeftByNoJump) {
   // The mean driven away from the frame's own slide along a neighbour's difference, until its
   // energy is above the frame's: the patch must then go back towards its own slide by as much
   // as the energy needs, not all at once.
