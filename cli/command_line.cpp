@@ -25,37 +25,31 @@ CLI::Validator a_number() {
       "");
 }
 
+// Paragraphs, one a line; the help wraps them (help_format.h). Lines starting with spaces are
+// commands, kept as they are.
 const char* const kDescription =
     ": skin sliding for deformed character meshes.\n"
     "Moves each patch's free vertices along the frame's surface so that the skin's bind edge "
-    "lengths\n"
-    "come back: by default (--method elastic) they relax in a fixed chart of the patch towards "
-    "the\n"
-    "bind's shape with fold-free, energy-decreasing steps; --method paper flattens bind and frame "
-    "with\n"
-    "force-density bar nets (Yang & Zhang 2010). The patch border and holes never move.\n"
-    "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, `12-40`,\n"
-    "`pBody.f[12:40]`; whitespace or commas between them, `#` comments. For .gltf/.glb the faces\n"
-    "are the triangles of the mesh's triangle primitives, in primitive order (vertices welded by\n"
+    "lengths come back: by default (--method elastic) they relax in a fixed chart of the patch "
+    "towards the bind's shape with fold-free, energy-decreasing steps; --method paper flattens "
+    "bind and frame with force-density bar nets (Yang & Zhang 2010). The patch border and holes "
+    "never move.\n"
+    "Patch files list 0-based face ids of the bind (OBJ `f` lines in file order): `12`, `12-40`, "
+    "`pBody.f[12:40]`; whitespace or commas between them, `#` comments. For .gltf/.glb the faces "
+    "are the triangles of the mesh's triangle primitives, in primitive order (vertices welded by "
     "position for connectivity only).\n"
     "A rigged glTF character can be its own frame source:\n"
     "  skinslide --patch P.txt --animation NAME|INDEX [--fps N | --keyframes] character.glb\n"
-    "A point cache (.pc2, .mdd) of the bind's vertices is a whole shot: one FRAME, slid sample by\n"
-    "sample into a cache of the same name (a --frames chunk: <shot>.<first>-<last>.pc2); chunks\n"
+    "A point cache (.pc2, .mdd) of the bind's vertices is a whole shot: one FRAME, slid sample by "
+    "sample into a cache of the same name (a --frames chunk: <shot>.<first>-<last>.pc2); chunks "
     "join with\n"
     "  skinslide join [-o DIR] CHUNK...\n"
     "Two slid outputs (folders of frames, or caches) compare as meshes, for CI, with\n"
-    "  skinslide compare [--tolerance T] A B";
+    "  skinslide compare [--tolerance T] [--common] A B";
 
 // Inputs and glTF.
 void add_inputs(CLI::App& app, CliOptions& o) {
   const char* in = "Inputs";
-  app.add_option("--patch", o.run.patches,
-                 "Patch file (repeatable; each file's patches are separate); required but with "
-                 "--no-slide")
-      ->allow_extra_args(false)
-      ->type_name("FILE")
-      ->group(in);
   app.add_option("bind", o.run.bind, "Bind mesh (.obj, .gltf, .glb)")
       ->required()
       ->type_name("BIND")
@@ -63,9 +57,15 @@ void add_inputs(CLI::App& app, CliOptions& o) {
   auto* frames =
       app.add_option("frames", o.run.frames,
                      "Deformed frames: the bind mesh with moved vertices, or one point cache of "
-                     "them (.pc2, .mdd); none with --animation")
+                     "them (.pc2, .mdd)")
           ->type_name("FRAME...")
           ->group(in);
+  app.add_option("--patch", o.run.patches,
+                 "Patch file (repeatable; each file's patches are separate); required, unless "
+                 "--no-slide")
+      ->allow_extra_args(false)
+      ->type_name("FILE")
+      ->group(in);
   app.add_flag("--bind-is-frame", o.run.bind_is_frame,
                "Take a BIND named as a member of the FRAME sequence (frames/arm.0001.obj with "
                "frames/arm.0002.obj ...), refused otherwise as a forgotten bind")
@@ -169,16 +169,25 @@ void add_method_options(CLI::App& app, Options& options, CliOptions& o, const ch
   }
 }
 
+// The Method group in README's order: --method, the elastic options (--window last), the paper's.
 void add_method(CLI::App& app, CliOptions& o) {
   const char* method = "Method";
-  add_table_option(app, method_option(), o.run, o, method);
+  // The help says where each method's options are in this group (its table's text cannot: it
+  // does not know the help's order).
+  add_table_option(app, method_option(), o.run, o, method)
+      ->description(
+          "elastic: the free vertices relax in a fixed chart of each patch towards the bind's "
+          "edge lengths, with fold-free, energy-decreasing steps (its options: from --" +
+          option_table<ElasticOptions>().front().name + " to --" + window_ends_option().name +
+          "); paper: Yang & Zhang's bar nets (its options: from --" +
+          option_table<PaperOptions>().front().name + " on)");
   add_method_options(app, o.elastic, o, method);
-  add_method_options(app, o.paper, o, method);
   // A run's option, not a frame's (pipeline/run_options.h window_option).
   CLI::Option* window = add_table_option(app, window_option(), o.run, o, method)->type_name("N");
   o.method_only.push_back({window, method_name(ElasticOptions{})});
   CLI::Option* ends = add_table_option(app, window_ends_option(), o.run, o, method);
   o.method_only.push_back({ends, method_name(ElasticOptions{})});
+  add_method_options(app, o.paper, o, method);
 }
 
 void add_run(CLI::App& app, CliOptions& o) {
@@ -212,6 +221,12 @@ void add_run(CLI::App& app, CliOptions& o) {
                  "the command line overrides it")
       ->type_name("FILE")
       ->check(CLI::ExistingFile)
+      ->group(run);
+  // Declared again after the others, so that --help lists them here, in Run, as README does.
+  app.set_help_flag();
+  app.set_help_flag("-h,--help", "Print this help and exit")->group(run);
+  app.set_version_flag("--version", std::string("skinslide ") + version(),
+                       "Print the version and exit")
       ->group(run);
 }
 

@@ -9,6 +9,7 @@
 #include "compare/compare_report.h"
 #include "core/error.h"
 #include "exit_status.h"
+#include "help_format.h"
 #include "io/atomic_write.h"
 #include "core/number_format.h"
 
@@ -41,7 +42,7 @@ void add_options(CLI::App& app, CompareCli& c) {
   app.add_option("B", c.b, "Second output, of the same kind as A")->required();
   app.add_option("--tolerance", c.options.tolerance,
                  "Frames differ when a vertex moved farther than T bounding-box diagonals, or a "
-                 "face turned over (default 1e-6: far above a float's last bit, far below a "
+                 "face turned over (the default: far above a float's last bit, far below a "
                  "pixel)")
       ->type_name("T")
       ->default_str(format_double(kDefaultCompareTolerance))
@@ -103,6 +104,7 @@ int compare_and_print(const CompareCli& c) {
 int run_compare(int argc, char** argv) {
   CompareCli c;
   CLI::App app{kDescription, "skinslide compare"};
+  cli::use_help_format(app);
   add_options(app, c);
   try {
     app.parse(argc, argv);

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "exit_status.h"
+#include "help_format.h"
 #include "skinslide.h"
 
 namespace skinslide {
@@ -18,13 +19,11 @@ int run_join(int argc, char** argv) {
   bool quiet = false;
   CLI::App app{
       "skinslide join: joins the point cache chunks of a shot, written by farm tasks each given "
-      "its --frames\n"
-      "range (shot.0001-0100.pc2, shot.0101-0200.pc2, ...), into the cache one task sliding "
-      "every frame\n"
-      "writes (shot.pc2), byte for byte. Chunks may be given in any order; they must be one run "
-      "of samples\n"
-      "with no gap and no overlap.",
+      "its --frames range (shot.0001-0100.pc2, shot.0101-0200.pc2, ...), into the cache one task "
+      "sliding every frame writes (shot.pc2), byte for byte. Chunks may be given in any order; "
+      "they must be one run of samples with no gap and no overlap.",
       "skinslide join"};
+  cli::use_help_format(app);
   app.add_option("chunks", chunks, "Cache chunks, <shot>.<first>-<last>.pc2 or .mdd")
       ->required()
       ->type_name("CHUNK...");

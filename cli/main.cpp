@@ -19,6 +19,7 @@
 #include "core/version.h"
 #include "compare.h"
 #include "exit_status.h"
+#include "help_format.h"
 #include "io/run_inputs.h"
 #include "join.h"
 #include "skinslide.h"
@@ -80,8 +81,7 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "compare") return run_compare(argc - 1, argv + 1);
   cli::CliOptions o;
   CLI::App app{cli::description(), "skinslide"};
-  app.set_version_flag("--version", std::string("skinslide ") + version());
-  app.get_formatter()->column_width(36);
+  cli::use_help_format(app);
   cli::add_options(app, o);
   try {
     cli::parse(app, o, argc, argv);

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""skinslide --help against README's Options table (README "Options"): the same options; each
-number's default and range the same; an option of one method says so in both; and no help text
-states one method's rule as everyone's (a word README ties to one method, as `lerp(` to the
-paper's slide weights, names that method in the same help text).
+"""skinslide --help against README's Options table (README "Options"): the same options in the
+same groups, in the same order of groups; each number's default and range the same; an option of
+one method says so in both; and no help text states one method's rule as everyone's (a word
+README ties to one method, as `lerp(` to the paper's slide weights, names that method in the same
+help text). And the help of skinslide, `skinslide compare` and `skinslide join` reads in 100
+columns, with no CLI11 type marker (`FILE:FILE`, `N:INT in [0 - 100]=0`, `Excludes:`).
 Usage: SKINSLIDE=path/to/skinslide tests/cli/help_readme.py"""
 import os
 import re
@@ -20,52 +22,104 @@ if not binary or not os.access(binary, os.X_OK):
     sys.exit(2)
 
 
-def help_options():
-    """{long name: (range or None, default or None, description)} from --help."""
-    text = subprocess.run([binary, "--help"], capture_output=True, text=True, check=True).stdout
-    options, current = {}, None
+HELP_COLUMNS = 100
+TEXT_COLUMN = 30  # where an option's text starts (cli/help_format.cpp kTextColumn)
+# What CLI11's own formatter writes and ours never does: a type with its checks joined by ':'
+# (FILE:FILE, INT:INT in [0 - 100], TEXT:{a,b}), a default after '=', CLI11's words.
+RAW_MARKERS = [r"\b[A-Z]+:[A-Z{]", r"\bin \[[-\d.e+]+ - ", r"^\s+-\S.*\S=\S", r"\bExcludes:", r"\bNeeds:",
+               r"\bREQUIRED\b", r"\b(TEXT|INT|UINT|FLOAT)\b", r"^POSITIONALS:", r"^OPTIONS:"]
+
+
+def help_text(*command):
+    return subprocess.run([binary, *command, "--help"], capture_output=True, text=True,
+                          check=True).stdout
+
+
+def help_options(text):
+    """({name: (range or None, default or None, description)}, [(group, [names])]) from --help:
+    long names, and positional ones (BIND)."""
+    options, groups, current = {}, [], None
+    listing = False  # past the description: in the groups of options
     for line in text.splitlines():
-        head = re.match(r"^  (-\w,)?(--[\w-]+)", line)
-        if head:
-            # The description follows two spaces or more, or starts the next line.
-            declared, _, description = re.split(r"(\s{2,})", line[2:] + "  ", maxsplit=1)
-            rng = re.search(r"in \[([^ ]+) - ([^\]]+)\]", declared)
-            default = re.search(r"=(\S+)", declared)
+        listing = listing or line.startswith("Usage:")
+        group = listing and re.match(r"^(\w[\w ]*):$", line)
+        head = re.match(r"^  (-\w, )?(--[\w-]+|[A-Z][A-Z.]*)( |$)", line)
+        if group:
+            groups.append((group.group(1), []))
+        elif head:
             current = head.group(2)
-            options[current] = [rng.groups() if rng else None,
-                                default.group(1) if default else None, description.strip()]
-        elif current and line.startswith(" " * 36):
+            # The text starts beside a short name and argument, else on the next line.
+            beside = line[:TEXT_COLUMN].endswith(" ")
+            options[current] = [None, None, line[TEXT_COLUMN:].strip() if beside else ""]
+            if groups:
+                groups[-1][1].append(current)
+        elif current and line.startswith(" " * TEXT_COLUMN):
             options[current][2] = (options[current][2] + " " + line.strip()).strip()
         elif not line.strip():
             current = None
-    return options
+    for option in options.values():
+        # The notes after the text: "(default 3; 1..1000; not with --x)".
+        notes = re.search(r"\(([^()]*)\)$", option[2])
+        if notes:
+            rng = re.search(r"(?:^|; )([-\d.e+]+)\.\.([-\d.e+]+)(?:;|$)", notes.group(1))
+            default = re.search(r"(?:^|; )default ([^;]+)", notes.group(1))
+            option[0] = rng.groups() if rng else None
+            option[1] = default.group(1) if default else None
+    return options, groups
 
 
 def readme_rows():
-    """[(long names, default, range or None, meaning)] from README's Options table."""
+    """([(names, default, range or None, meaning)], [(group, [names])]) from README's Options
+    table: long names and positional ones (`BIND`)."""
     text = (ROOT / "README.md").read_text()
     section = text.split("\n## Options\n", 1)[1].split("\n## ", 1)[0]
-    rows = []
+    rows, groups = [], []
     for line in section.splitlines():
         cells = [c.strip() for c in re.split(r"(?<!\\)\|", line)[1:-1]]
+        group = re.match(r"^\*\*(.+)\*\*$", cells[0]) if cells else None
+        if group:
+            groups.append((group.group(1), []))
         if len(cells) != 3 or not cells[0].startswith("`"):
             continue
-        names = re.findall(r"--[\w-]+", cells[0])
+        names = re.findall(r"--[\w-]+", cells[0]) or re.findall(r"^`([A-Z][A-Z.]*)`", cells[0])
+        if groups:
+            groups[-1][1].extend(names)
         default = re.match(r"`([^`]*)`", cells[1])
         rng = re.search(r"\(([-\d.e+]+)\.\.([-\d.e+]+)\)", cells[1] + " " + cells[2])
         rows.append((names, default.group(1) if default else None,
                      rng.groups() if rng else None, cells[2]))
-    return rows
+    return rows, groups
 
 
 failures = []
-helps = help_options()
-rows = readme_rows()
+main_help = help_text()
+helps, help_groups = help_options(main_help)
+rows, readme_groups = readme_rows()
 in_readme = {n for names, *_ in rows for n in names}
 for name in sorted(set(helps) - in_readme):
     failures.append(f"{name}: in --help, not in README's Options table")
 for name in sorted(in_readme - set(helps)):
     failures.append(f"{name}: in README's Options table, not in --help")
+shown = [(g, [n for n in names if n in in_readme]) for g, names in help_groups]
+tabled = [(g, [n for n in names if n in helps]) for g, names in readme_groups]
+if [g for g, _ in shown] != [g for g, _ in tabled]:
+    failures.append(f"--help's groups {[g for g, _ in shown]}, README's {[g for g, _ in tabled]}")
+for (group, names), (_, table_names) in zip(shown, tabled):
+    if sorted(names) != sorted(table_names):
+        failures.append(f"group {group}: --help has {names}, README {table_names}")
+
+lines = 0
+for command in ((), ("compare",), ("join",)):
+    text = main_help if not command else help_text(*command)
+    what = " ".join(("skinslide",) + command) + " --help"
+    for n, line in enumerate(text.splitlines(), 1):
+        lines += 1
+        if len(line) > HELP_COLUMNS:
+            failures.append(f"{what}: line {n} is {len(line)} columns (at most {HELP_COLUMNS}): "
+                            f"{line!r}")
+        for marker in RAW_MARKERS:
+            if re.search(marker, line):
+                failures.append(f"{what}: line {n} holds a CLI11 marker ({marker}): {line!r}")
 
 checked = 0
 for names, default, rng, meaning in rows:
@@ -98,6 +152,7 @@ for name, (_, _, description) in sorted(helps.items()):
 
 for f in failures:
     print("FAIL:", f, file=sys.stderr)
-print(f"help_readme: {len(helps)} options in --help, {len(rows)} README rows, {checked} ranges "
-      f"and defaults compared, {len(failures)} failed")
+print(f"help_readme: {len(helps)} options in --help in {len(help_groups)} groups, {len(rows)} "
+      f"README rows, {checked} ranges and defaults compared, {lines} help lines read, "
+      f"{len(failures)} failed")
 sys.exit(1 if failures else 0)
