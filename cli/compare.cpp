@@ -17,6 +17,8 @@ namespace skinslide {
 namespace {
 
 constexpr int kDifferent = 1;  // like diff and cmp: 0 the same, 1 different
+// --common names this many of the frames it left out on each side, then "and N more".
+constexpr std::size_t kLeftOutListed = 5;
 
 struct CompareCli {
   std::string a, b, report;
@@ -26,16 +28,12 @@ struct CompareCli {
 
 const char* kDescription =
     "skinslide compare: compares two slid outputs as meshes, frame by frame: two folders of "
-    "frames\n"
-    "(OBJ, glTF, GLB files and PC2/MDD caches, paired by file name), two mesh files or two "
-    "caches.\n"
-    "Per frame: the largest vertex distance in bounding-box diagonals (the bind's with --bind, "
-    "else\n"
-    "A's first frame's) and the faces turned over between A and B. Exit 0: the same within "
-    "--tolerance;\n"
-    "1: different; 2: usage; 3: unreadable or mismatched inputs (frame, vertex or face counts); "
-    "4: the\n"
-    "report cannot be written.";
+    "frames (OBJ, glTF, GLB files and PC2/MDD caches, paired by file name), two mesh files or "
+    "two caches. Per frame: the largest vertex distance in bounding-box diagonals (the bind's "
+    "with --bind, else the frame's own in A) and the faces turned over between A and B.\n"
+    "Exit 0: the same within --tolerance; 1: different; 2: usage; 3: unreadable or mismatched "
+    "inputs (a frame on one side only, two meshes' frames paired, other counts); 4: the report "
+    "cannot be written.";
 
 void add_options(CLI::App& app, CompareCli& c) {
   app.add_option("A", c.a, "First output: a folder of frames, a mesh file or a cache")->required();
@@ -48,11 +46,16 @@ void add_options(CLI::App& app, CompareCli& c) {
       ->default_str(format_double(kDefaultCompareTolerance))
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--bind", c.options.bind,
-                 "The bind mesh: its diagonal is the unit of distance (default: A's first "
-                 "frame's), and its faces are the caches' (else a cache's faces are not checked)")
+                 "The bind mesh: its diagonal is the unit of distance (default: each frame's "
+                 "own, A's), and its faces are the caches' (else a cache's faces are not "
+                 "checked)")
       ->type_name("FILE");
   app.add_option("--mesh", c.options.mesh.mesh, "Which mesh of a glTF holding several")
       ->type_name("NAME|INDEX");
+  app.add_flag("--common", c.options.common,
+               "Compare only the frames both hold (a farm chunk against the whole shot): a "
+               "folder's by file name, a cache's samples by frame number (MDD: time); says which "
+               "it left out");
   app.add_option("--report", c.report, "Write the comparison as JSON (every frame, the totals)")
       ->type_name("FILE.json");
   app.add_flag("-q,--quiet", c.quiet, "Errors only");
@@ -72,13 +75,33 @@ std::string frame_line(const ComparedFrame& f) {
   return line;
 }
 
+// "1 only in a/ (a/f.0005.obj)": what --common left out of one side.
+std::string left_out(const std::vector<std::string>& names, const std::string& side) {
+  std::string text = std::to_string(names.size()) + " only in " + side;
+  for (std::size_t i = 0; i < names.size() && i < kLeftOutListed; ++i)
+    text += (i ? ", " : " (") + names[i];
+  if (names.size() > kLeftOutListed)
+    text += " and " + std::to_string(names.size() - kLeftOutListed) + " more";
+  return text + (names.empty() ? "" : ")");
+}
+
+// With --common: how many frames both held, and which it left out.
+std::string common_line(const CompareResult& r) {
+  return "skinslide compare: --common: " + std::to_string(r.frames.size()) +
+         " frames in both compared; left out " + left_out(r.only_in_a, r.a) + ", " +
+         left_out(r.only_in_b, r.b);
+}
+
 std::string summary_line(const CompareResult& r) {
   const std::size_t differing = r.differing();
   std::string line =
       "skinslide compare: " + std::to_string(r.frames.size()) + " frames, " +
       (differing == 0 ? std::string("the same") : std::to_string(differing) + " differ") +
-      " (tolerance " + log_number(r.tolerance) + " of the diagonal " + log_number(r.diagonal) +
-      ", " + r.diagonal_from + "'s)";
+      " (tolerance " + log_number(r.tolerance) +
+      (r.diagonal_from.empty()
+           ? std::string(" of each frame's own diagonal, A's")
+           : " of the diagonal " + log_number(r.diagonal) + ", " + r.diagonal_from + "'s") +
+      ")";
   const long long k = r.largest();
   if (k >= 0) {
     const ComparedFrame& f = r.frames[static_cast<std::size_t>(k)];
@@ -95,6 +118,7 @@ int compare_and_print(const CompareCli& c) {
     if (!c.quiet && (f.differs || c.verbose)) std::fprintf(stderr, "%s\n", frame_line(f).c_str());
   });
   if (!c.report.empty()) write_file_atomic(c.report, compare_report_json(result));
+  if (!c.quiet && c.options.common) std::fprintf(stderr, "%s\n", common_line(result).c_str());
   if (!c.quiet) std::fprintf(stderr, "%s\n", summary_line(result).c_str());
   return result.differing() == 0 ? 0 : kDifferent;
 }

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <set>
 
 #include "core/error.h"
 #include "core/file_extension.h"
@@ -73,17 +75,36 @@ std::vector<std::string> missing_from(const std::vector<std::string>& names,
   return missing;
 }
 
-// Both folders hold the same frame names, else the counts and what each lacks.
-void require_same_frames(const std::string& a, const std::vector<std::string>& names_a,
-                         const std::string& b, const std::vector<std::string>& names_b) {
+std::string joined(const std::string& folder, const std::string& name) {
+  return (fs::path(folder) / name).string();
+}
+
+// The names both folders hold. Without `common`, both hold the same names, else the counts and
+// what each lacks; with it, what each lacks goes to `result`'s only_in_a/only_in_b.
+std::vector<std::string> paired_frames(const std::string& a,
+                                       const std::vector<std::string>& names_a,
+                                       const std::string& b,
+                                       const std::vector<std::string>& names_b, bool common,
+                                       CompareResult& result) {
   const std::vector<std::string> not_in_b = missing_from(names_a, names_b);
   const std::vector<std::string> not_in_a = missing_from(names_b, names_a);
-  if (not_in_b.empty() && not_in_a.empty()) return;
+  if (not_in_b.empty() && not_in_a.empty()) return names_a;
+  if (common) {
+    for (const std::string& name : not_in_b) result.only_in_a.push_back(joined(a, name));
+    for (const std::string& name : not_in_a) result.only_in_b.push_back(joined(b, name));
+    std::vector<std::string> both;
+    std::set_intersection(names_a.begin(), names_a.end(), names_b.begin(), names_b.end(),
+                          std::back_inserter(both));
+    if (both.empty())
+      throw Error(ErrorKind::Input, a + " and " + b + " have no frame in common (" + a + ": " +
+                                        listed(names_a) + "; " + b + ": " + listed(names_b) + ")");
+    return both;
+  }
   std::string what = a + " has " + std::to_string(names_a.size()) + " frames, " + b + " " +
                      std::to_string(names_b.size());
   if (!not_in_b.empty()) what += "; missing from " + b + ": " + listed(not_in_b);
   if (!not_in_a.empty()) what += "; missing from " + a + ": " + listed(not_in_a);
-  throw Error(ErrorKind::Input, what);
+  throw Error(ErrorKind::Input, what + " (--common compares the frames both hold)");
 }
 
 // The 1-based line of OBJ vertex v's `v` statement.
@@ -92,7 +113,7 @@ long vertex_line(const ObjText& text, Index v) {
   return 1 + std::count(begin, begin + static_cast<long>(text.coordinate_spans[v][0]), '\n');
 }
 
-// What every frame is compared with: the diagonal, and the bind's faces when it was given.
+// What every frame is compared with: the bind's diagonal and faces when it was given.
 class Comparison {
  public:
   Comparison(const CompareOptions& options, CompareResult& result,
@@ -100,7 +121,8 @@ class Comparison {
       : options_(options), result_(result), frame_done_(frame_done) {
     if (!options.bind.empty()) {
       bind_ = read_mesh_file(options.bind, options.mesh);
-      set_diagonal(bind_->mesh.positions, options.bind);
+      result_.diagonal = diagonal_of(bind_->mesh.positions, options.bind);
+      result_.diagonal_from = options.bind;
     }
   }
 
@@ -108,7 +130,11 @@ class Comparison {
   void caches(const std::string& a, const std::string& b);
 
  private:
-  void set_diagonal(const Positions3& positions, const std::string& from);
+  // The unit of `from`'s distances: the bind's diagonal, else that of `positions` (A's frame).
+  double frame_diagonal(const Positions3& positions, const std::string& from) const;
+  static double diagonal_of(const Positions3& positions, const std::string& from);
+  void compare_samples(const CacheReader& ra, const CacheReader& rb, std::size_t ka,
+                       std::size_t kb, const PolyMesh& faces);
   void require_bind_vertices(const std::string& path, std::size_t count) const;
   void add(ComparedFrame frame);
 
@@ -118,12 +144,15 @@ class Comparison {
   std::optional<MeshFile> bind_;
 };
 
-void Comparison::set_diagonal(const Positions3& positions, const std::string& from) {
-  if (!result_.diagonal_from.empty()) return;
-  result_.diagonal = bounding_box_diagonal(positions);
-  result_.diagonal_from = from;
-  if (!(result_.diagonal > 0))
+double Comparison::diagonal_of(const Positions3& positions, const std::string& from) {
+  const double diagonal = bounding_box_diagonal(positions);
+  if (!(diagonal > 0))
     throw_input(from, 0, "its bounding box is a single point: no diagonal to measure distances in");
+  return diagonal;
+}
+
+double Comparison::frame_diagonal(const Positions3& positions, const std::string& from) const {
+  return bind_ ? result_.diagonal : diagonal_of(positions, from);
 }
 
 void Comparison::require_bind_vertices(const std::string& path, std::size_t count) const {
@@ -162,10 +191,12 @@ void Comparison::meshes(const std::string& a, const std::string& b) {
                     std::to_string(fa.mesh.vertex_count()));
   require_same_faces(fa, fb);
   require_bind_vertices(a, fa.mesh.positions.size());
-  set_diagonal(fa.mesh.positions, a);
-  ComparedFrame frame{a, b, {}, {}, false};
+  ComparedFrame frame;
+  frame.a = a;
+  frame.b = b;
+  frame.diagonal = frame_diagonal(fa.mesh.positions, a);
   frame.difference = frame_difference(fa.mesh.positions, fb.mesh.positions, fa.mesh,
-                                      result_.diagonal, options_.tolerance);
+                                      frame.diagonal, options_.tolerance);
   if (fa.obj && frame.difference.vertex >= 0)
     frame.vertex_at = a + ":" + std::to_string(vertex_line(*fa.obj, frame.difference.vertex));
   add(std::move(frame));
@@ -177,7 +208,8 @@ std::string sample_name(const std::string& path, const CacheHeader& header, std:
          std::to_string(sample_frame(header, k)) + ")";
 }
 
-void require_same_samples(const CacheReader& a, const CacheReader& b) {
+// The caches hold points of one mesh in one format.
+void require_same_points(const CacheReader& a, const CacheReader& b) {
   const CacheHeader& ha = a.header();
   const CacheHeader& hb = b.header();
   if (ha.format != hb.format)
@@ -188,6 +220,12 @@ void require_same_samples(const CacheReader& a, const CacheReader& b) {
     throw_input(b.path(), 0,
                 "has " + std::to_string(hb.points) + " points; " + a.path() + " has " +
                     std::to_string(ha.points));
+}
+
+// The caches hold the same frames, sample by sample.
+void require_same_samples(const CacheReader& a, const CacheReader& b) {
+  const CacheHeader& ha = a.header();
+  const CacheHeader& hb = b.header();
   if (ha.samples != hb.samples)
     throw_input(b.path(), 0,
                 "has " + std::to_string(hb.samples) + " samples; " + a.path() + " has " +
@@ -201,31 +239,74 @@ void require_same_samples(const CacheReader& a, const CacheReader& b) {
             (ha.format == CacheFormat::Mdd ? " at " + format_float(hb.times[k]) + " s" : "") +
             "; in " + a.path() + " frame " + std::to_string(sample_frame(ha, k)) +
             (ha.format == CacheFormat::Mdd ? " at " + format_float(ha.times[k]) + " s" : "") +
-            ": the caches do not hold the same frames");
+            ": the caches do not hold the same frames (--common compares the frames both "
+            "hold)");
   }
+}
+
+// What pairs a sample with the other cache's: PC2 its frame number, MDD its time (an MDD's
+// frame numbers are its sample indices, which a chunk starts again from 0).
+std::string sample_key(const CacheHeader& header, std::size_t k) {
+  return header.format == CacheFormat::Mdd ? format_float(header.times[k]) + " s"
+                                           : std::to_string(sample_frame(header, k));
+}
+
+// The samples (index in A, index in B) both caches hold, in A's order; those of one only go to
+// `result`'s only_in_a/only_in_b.
+std::vector<std::pair<std::size_t, std::size_t>> common_samples(const CacheReader& a,
+                                                                const CacheReader& b,
+                                                                CompareResult& result) {
+  std::map<std::string, std::size_t> in_b;
+  const auto samples = [](const CacheReader& r) {
+    return static_cast<std::size_t>(r.header().samples);
+  };
+  for (std::size_t k = 0; k < samples(b); ++k) in_b.emplace(sample_key(b.header(), k), k);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  std::set<std::size_t> paired_b;
+  for (std::size_t k = 0; k < samples(a); ++k) {
+    const auto it = in_b.find(sample_key(a.header(), k));
+    if (it == in_b.end()) {
+      result.only_in_a.push_back(sample_name(a.path(), a.header(), k));
+      continue;
+    }
+    pairs.emplace_back(k, it->second);
+    paired_b.insert(it->second);
+  }
+  for (std::size_t k = 0; k < samples(b); ++k)
+    if (!paired_b.count(k)) result.only_in_b.push_back(sample_name(b.path(), b.header(), k));
+  if (pairs.empty())
+    throw_input(b.path(), 0, "holds no frame of " + a.path() + "'s: no sample in common");
+  return pairs;
+}
+
+void Comparison::compare_samples(const CacheReader& ra, const CacheReader& rb, std::size_t ka,
+                                 std::size_t kb, const PolyMesh& faces) {
+  const Positions3 pa = sample_positions(ra.sample(ka));
+  const Positions3 pb = sample_positions(rb.sample(kb));
+  ComparedFrame frame;
+  frame.a = sample_name(ra.path(), ra.header(), ka);
+  frame.b = sample_name(rb.path(), rb.header(), kb);
+  frame.diagonal = frame_diagonal(pa, frame.a);
+  frame.difference = frame_difference(pa, pb, faces, frame.diagonal, options_.tolerance);
+  add(std::move(frame));
 }
 
 void Comparison::caches(const std::string& a, const std::string& b) {
   const CacheReader ra(a);
   const CacheReader rb(b);
-  require_same_samples(ra, rb);
+  require_same_points(ra, rb);
+  if (!options_.common) require_same_samples(ra, rb);
   require_bind_vertices(a, static_cast<std::size_t>(ra.header().points));
   static const PolyMesh kNoFaces;
   const PolyMesh& faces = bind_ ? bind_->mesh : kNoFaces;
   if (!bind_) result_.faces_checked = false;
-  for (std::size_t k = 0; k < static_cast<std::size_t>(ra.header().samples); ++k) {
-    const Positions3 pa = sample_positions(ra.sample(k));
-    const Positions3 pb = sample_positions(rb.sample(k));
-    set_diagonal(pa, sample_name(a, ra.header(), k));
-    ComparedFrame frame{
-        sample_name(a, ra.header(), k), sample_name(b, rb.header(), k), {}, {}, false};
-    frame.difference = frame_difference(pa, pb, faces, result_.diagonal, options_.tolerance);
-    add(std::move(frame));
+  if (options_.common) {
+    for (const auto& [ka, kb] : common_samples(ra, rb, result_))
+      compare_samples(ra, rb, ka, kb, faces);
+    return;
   }
-}
-
-std::string joined(const std::string& folder, const std::string& name) {
-  return (fs::path(folder) / name).string();
+  for (std::size_t k = 0; k < static_cast<std::size_t>(ra.header().samples); ++k)
+    compare_samples(ra, rb, k, k, faces);
 }
 
 }  // namespace
@@ -273,8 +354,8 @@ CompareResult compare_outputs(const std::string& a, const std::string& b,
   }
   const std::vector<std::string> names_a = frame_names(a);
   const std::vector<std::string> names_b = frame_names(b);
-  require_same_frames(a, names_a, b, names_b);
-  for (const std::string& name : names_a) compare_pair(joined(a, name), joined(b, name));
+  for (const std::string& name : paired_frames(a, names_a, b, names_b, options.common, result))
+    compare_pair(joined(a, name), joined(b, name));
   return result;
 }
 

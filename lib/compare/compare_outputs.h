@@ -20,12 +20,18 @@ struct CompareOptions {
   /// caches.
   std::string bind;
   MeshReadOptions mesh;  ///< which mesh of a glTF holding several (`--mesh`)
+  /// Compare only the frames both sides hold (`--common`: a farm chunk against the whole run):
+  /// a folder's files by name, a cache's samples by frame number (PC2) or time (MDD); the others
+  /// are listed in CompareResult::only_in_a/only_in_b. False: a frame on one side only is an
+  /// error.
+  bool common = false;
 };
 
 /// One frame of A beside the same frame of B.
 struct ComparedFrame {
   std::string a, b;  ///< the frames: files, or "shot.pc2 sample 3" for a cache's
   FrameDifference difference;
+  double diagonal = 0;    ///< the length its distances are in: the bind's, else A's frame's own
   std::string vertex_at;  ///< A's line of the farthest vertex, "a/f.0003.obj:125" (OBJ only)
   bool differs = false;   ///< farther than the tolerance, or a face turned
 };
@@ -33,11 +39,14 @@ struct ComparedFrame {
 struct CompareResult {
   std::string a, b;
   double tolerance = 0;
-  double diagonal = 0;        ///< the length distances are in
-  std::string diagonal_from;  ///< whose bounding box: the bind, or A's first frame
+  double diagonal = 0;        ///< the bind's diagonal; 0: each frame's own (ComparedFrame)
+  std::string diagonal_from;  ///< the bind's path; empty: each frame's own diagonal
   /// Every frame's faces compared: false once a cache is compared without a bind (no faces).
   bool faces_checked = false;
   std::vector<ComparedFrame> frames;  ///< in file name order; a cache's in sample order
+  /// With CompareOptions::common, the frames left out as one side lacks them: folder files
+  /// ("a/f.0005.obj"), cache samples ("a.pc2 sample 4 (frame 5)"), in order. Else empty.
+  std::vector<std::string> only_in_a, only_in_b;
 
   std::size_t differing() const;  ///< frames that differ
   /// The frame with the largest vertex distance (the first of equals); -1 for no frame.
@@ -45,13 +54,16 @@ struct CompareResult {
 };
 
 /// Compares outputs A and B (paths: two folders, two mesh files or two caches of one format).
+/// Each frame's distances are in the bind's diagonal, else in its own (A's frame's): a folder
+/// may hold several meshes' frames, a chunk be compared with the whole shot (`common`).
 /// `frame_done` (optional) is called with each frame once compared, in order.
 /// \throw Error(Usage) for a tolerance below 0 or not finite, or a folder compared with a file,
 ///        a mesh with a cache; Error(Input) naming both files for: a path that does not exist or
 ///        cannot be read, a folder with no frame, a frame in one folder and not in the other (the
-///        counts and the first missing names), a frame of another vertex count or other faces
-///        than its pair (or than the bind), caches of different formats, sample counts or frame
-///        numbers, a diagonal of zero length.
+///        counts and the first missing names; with `common`, no frame in both), a frame of
+///        another vertex count or other faces than its pair (or than the bind), caches of
+///        different formats or point counts, other sample counts or frame numbers (with
+///        `common`: no sample in both), a diagonal of zero length.
 CompareResult compare_outputs(const std::string& a, const std::string& b,
                               const CompareOptions& options,
                               const std::function<void(const ComparedFrame&)>& frame_done = {});

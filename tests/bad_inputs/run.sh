@@ -462,6 +462,8 @@ expect compare_empty_folder 3 "$tmp/cmp/empty: holds no frame (no .obj, .gltf, .
 expect compare_no_such_output 3 "$tmp/cmp/none: no such file or folder" compare "$tmp/cmp/a" "$tmp/cmp/none"
 expect compare_unlike_outputs 2 "are not alike: compare two folders, two meshes or two caches" compare "$tmp/cmp/a" "$tmp/shot.pc2"
 expect compare_one_output 2 "B is required" compare "$tmp/cmp/a"
+mkdir -p "$tmp/cmp/later" && cp "$tmp/cmp/a/grid.0002.obj" "$tmp/cmp/later/grid.0003.obj"
+expect compare_common_none 3 "$tmp/cmp/a and $tmp/cmp/later have no frame in common" compare --common "$tmp/cmp/a" "$tmp/cmp/later"
 
 # --- files and folders -------------------------------------------------------------------------
 expect file_missing_bind 3 "nothere.obj: cannot read: No such file or directory" --patch $P "$tmp/nothere.obj" $F

@@ -3,8 +3,10 @@
 # 0), one coordinate's last digit changed (the same within the default tolerance, 1e-6 of the
 # diagonal; different at --tolerance 0), the other method (different, exit 1, the frames and
 # vertices named), a missing frame and mismatched counts (exit 3, naming the files), point caches
-# with and without --bind, the JSON report, usage errors (2) and a report that cannot be written
-# (4). Every case's figures are printed: the log shows what compare says.
+# with and without --bind, a farm chunk against the whole shot (--common: folders and caches), two
+# meshes' frames in one folder (each in its own diagonal), the JSON report, usage errors (2) and a
+# report that cannot be written (4). Every case's figures are printed: the log shows what compare
+# says.
 # Usage: SKINSLIDE=path/to/skinslide tests/cli/compare.sh
 set -u
 source "$(dirname "$0")/harness.sh"
@@ -80,6 +82,41 @@ cp -r "$tmp/b" "$tmp/other_mesh" && cp data/face/frames/face.0002.obj "$tmp/othe
 check "a frame of another mesh is refused (exit 3), both files named" \
   compares 3 "$tmp/other_mesh/elbow.0002.obj: has 1069 vertices; $tmp/a/elbow.0002.obj has 1056" "$tmp/a" "$tmp/other_mesh"
 
+echo "a farm chunk against the whole shot (--common):"
+"$bin" -q --frames 2-4 "${elbow[@]}" "${frames[@]}" -o "$tmp/chunk_objs"
+check "without --common a chunk is refused (exit 3), pointing at it" \
+  compares 3 "missing from $tmp/chunk_objs: elbow.0001.obj, elbow.0005.obj (--common compares the frames both hold)" "$tmp/a" "$tmp/chunk_objs"
+check "with --common the frames both hold are compared, the others named (exit 0)" \
+  compares 0 "--common: 3 frames in both compared; left out 2 only in $tmp/a ($tmp/a/elbow.0001.obj, $tmp/a/elbow.0005.obj), 0 only in $tmp/chunk_objs" --common "$tmp/a" "$tmp/chunk_objs"
+check "...the summary counts those 3" grep -qF "compare: 3 frames, the same" "$tmp/said"
+check "...and a difference in them is still one (exit 1)" \
+  compares 1 "1 differ" --common --tolerance 0 "$tmp/last_bit" "$tmp/chunk_objs"
+
+echo "two meshes' frames in one folder:"
+face=(--patch data/face/patch.txt data/face/bind.obj data/face/frames/*.obj)
+"$bin" -q "${face[@]}" -o "$tmp/face_elastic"
+"$bin" -q --method paper "${face[@]}" -o "$tmp/face_paper"
+"$bin" compare -q --report "$tmp/face_alone.json" "$tmp/face_elastic" "$tmp/face_paper"
+mkdir "$tmp/two_a" "$tmp/two_b"
+cp "$tmp/a"/*.obj "$tmp/face_elastic"/*.obj "$tmp/two_a"
+cp "$tmp/b"/*.obj "$tmp/face_paper"/*.obj "$tmp/two_b"
+check "the face's frames differ, the elbow's do not (exit 1), each in its own diagonal" \
+  compares 1 "of each frame's own diagonal, A's" --report "$tmp/two.json" "$tmp/two_a" "$tmp/two_b"
+check "...the face's distances as when its frames are compared alone (not in the elbow's diagonal)" \
+  /usr/bin/python3 - "$tmp/face_alone.json" "$tmp/two.json" <<'PY'
+import json, os, sys
+alone = {os.path.basename(f["a"]): f for f in json.load(open(sys.argv[1]))["frames"]}
+both = {os.path.basename(f["a"]): f for f in json.load(open(sys.argv[2]))["frames"]}
+assert len(both) == len(alone) + 5, (len(both), len(alone))
+for name, f in alone.items():
+    assert (both[name]["max_distance"], both[name]["diagonal"]) == (f["max_distance"], f["diagonal"]), (name, both[name], f)
+assert [f["differs"] for n, f in both.items() if n.startswith("elbow")] == [False] * 5
+print(f"    face frames: diagonals {sorted({f['diagonal'] for f in alone.values()})}, the elbow's "
+      f"{both['elbow.0001.obj']['diagonal']}")
+PY
+check "...with the elbow's --bind the face's frames are refused (exit 3), both files named" \
+  compares 3 "$tmp/two_a/face.0001.obj: has 1069 vertices; the bind (data/elbow/bind.obj) has 1056" --bind data/elbow/bind.obj "$tmp/two_a" "$tmp/two_b"
+
 echo "glTF frames:"
 rig=(--patch data/elbow/rig_patch.txt --animation bend data/elbow/rig.glb)
 "$bin" -q -j 1 "${rig[@]}" -o "$tmp/ga"
@@ -101,7 +138,8 @@ check "with --bind the bind's diagonal and faces" \
   compares 1 "of the diagonal 8.485, data/elbow/bind.obj's)" --bind data/elbow/bind.obj "$tmp/ca/shot.pc2" "$tmp/cp/shot.pc2"
 check "...a cache's sample named with its frame" grep -qF "differs: $tmp/ca/shot.pc2 sample 2 (frame 3)" "$tmp/said"
 # A float32's last bit flipped: the z of point 600 of sample 4 (slid: the patch is points
-# 320-671), as another build's rounding may leave it.
+# 320-671), as another build's rounding may leave it; in sample 4's own diagonal (the bent tube's,
+# shorter than the bind's 8.485).
 cp "$tmp/cb/shot.pc2" "$tmp/flipped.pc2"
 /usr/bin/python3 - "$tmp/flipped.pc2" <<'PY'
 import sys
@@ -113,11 +151,13 @@ with open(sys.argv[1], "r+b") as f:
     f.write(bytes([low ^ 1]))
 PY
 check "a float32's last bit in a cache is the same mesh" \
-  compares 0 "largest distance 2.81e-08" "$tmp/ca/shot.pc2" "$tmp/flipped.pc2"
+  compares 0 "largest distance 3.242e-08" "$tmp/ca/shot.pc2" "$tmp/flipped.pc2"
 check "...and differs at --tolerance 0" \
-  compares 1 "differs: $tmp/ca/shot.pc2 sample 4 (frame 5): largest distance 2.81e-08" --tolerance 0 "$tmp/ca/shot.pc2" "$tmp/flipped.pc2"
+  compares 1 "differs: $tmp/ca/shot.pc2 sample 4 (frame 5): largest distance 3.242e-08" --tolerance 0 "$tmp/ca/shot.pc2" "$tmp/flipped.pc2"
 check "a chunk against the whole shot: counts refused (exit 3)" \
   compares 3 "$tmp/chunk/shot.0001-0004.pc2: has 4 samples; $tmp/ca/shot.pc2 has 5" "$tmp/ca/shot.pc2" "$tmp/chunk/shot.0001-0004.pc2"
+check "...with --common its 4 samples against the shot's, by frame number (exit 0)" \
+  compares 0 "--common: 4 frames in both compared; left out 1 only in $tmp/ca/shot.pc2 ($tmp/ca/shot.pc2 sample 4 (frame 5)), 0 only in $tmp/chunk/shot.0001-0004.pc2" --common "$tmp/ca/shot.pc2" "$tmp/chunk/shot.0001-0004.pc2"
 
 echo "the report:"
 check "--report writes JSON" compares 1 "4 differ" --report "$tmp/r1.json" "$tmp/a" "$tmp/paper"
@@ -127,7 +167,9 @@ check "...with every frame and the totals" /usr/bin/python3 - "$tmp/r1.json" <<'
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert list(r) == ["skinslide", "a", "b", "tolerance", "diagonal", "diagonal_from", "faces_checked",
-                   "frames", "differing_frames", "largest", "same"], list(r)
+                   "frames", "only_in_a", "only_in_b", "differing_frames", "largest", "same"], list(r)
+assert r["diagonal"] is None and r["diagonal_from"] is None  # no --bind: each frame's own
+assert all(f["diagonal"] > 0 for f in r["frames"]) and r["only_in_a"] == r["only_in_b"] == []
 assert len(r["frames"]) == 5 and r["differing_frames"] == 4 and r["same"] is False
 assert r["frames"][0]["differs"] is False and r["frames"][0]["max_distance"] == 0
 assert all(f["max_distance"] > r["tolerance"] for f in r["frames"][1:])

@@ -74,8 +74,11 @@ TEST(CompareOutputs, TwoCopiesOfAShotAreTheSame) {
   EXPECT_EQ(r.frames[2].b, b + "/elbow.0003.obj");
   EXPECT_EQ(r.differing(), 0u);
   EXPECT_TRUE(r.faces_checked);
-  EXPECT_EQ(r.diagonal_from, a + "/elbow.0001.obj");
-  EXPECT_NEAR(r.diagonal, std::sqrt(2 * 2 + 2 * 2 + 8 * 8), 1e-6);  // the tube, r 1, length 8
+  EXPECT_EQ(r.diagonal_from, "");  // no bind: each frame's distances in its own diagonal
+  EXPECT_NEAR(r.frames[0].diagonal, std::sqrt(2 * 2 + 2 * 2 + 8 * 8), 1e-6);  // tube r 1, length 8
+  const ObjMesh bent = read_obj(a + "/elbow.0005.obj");
+  EXPECT_EQ(r.frames[4].diagonal, bounding_box_diagonal(bent.mesh.positions));
+  EXPECT_LT(r.frames[4].diagonal, r.frames[0].diagonal);  // the bent tube's box is shorter
   for (const ComparedFrame& f : r.frames) EXPECT_EQ(f.difference.vertex, -1);
 }
 
@@ -91,7 +94,7 @@ TEST(CompareOutputs, ALastDigitChangedIsWithinTheTolerance) {
   EXPECT_EQ(r.differing(), 0u);
   const FrameDifference& d = r.frames[2].difference;
   EXPECT_EQ(d.vertex, 1);
-  EXPECT_NEAR(d.max_distance, 1e-8 / r.diagonal, 1e-15);  // 1.2e-9 of the diagonal
+  EXPECT_NEAR(d.max_distance, 1e-8 / r.frames[2].diagonal, 1e-15);  // 1.2e-9 of the diagonal
   EXPECT_EQ(r.largest(), 2);
   // At tolerance 0 the frame differs: vertex 0, on line 3 of A's file.
   CompareOptions exact;
@@ -117,7 +120,7 @@ TEST(CompareOutputs, ARealDifferenceNamesTheFrameAndVertex) {
   EXPECT_TRUE(r.frames[3].differs);
   EXPECT_EQ(r.frames[3].difference.vertex, 500);
   EXPECT_EQ(r.frames[3].vertex_at, a + "/elbow.0004.obj:503");
-  EXPECT_NEAR(r.frames[3].difference.max_distance, 0.01 / r.diagonal, 1e-12);
+  EXPECT_NEAR(r.frames[3].difference.max_distance, 0.01 / r.frames[3].diagonal, 1e-12);
   EXPECT_EQ(r.largest(), 3);
 }
 
@@ -133,6 +136,67 @@ TEST(CompareOutputs, AMissingFrameIsRefusedNamingIt) {
   fs::copy_file(b + "/elbow.0005.obj", b + "/elbow.0006.obj");
   const std::string both = refusal(a, b, ErrorKind::Input);
   EXPECT_NE(both.find("missing from " + a + ": elbow.0006.obj"), std::string::npos) << both;
+  EXPECT_NE(both.find("(--common compares the frames both hold)"), std::string::npos) << both;
+}
+
+TEST(CompareOutputs, CommonComparesTheFramesBothHoldNamingTheRest) {
+  const test::TempDir dir("compare_common");
+  const std::string a = elbow_copy(dir, "a"), b = elbow_copy(dir, "b");
+  fs::remove(b + "/elbow.0001.obj");  // a chunk: frames 2-4 and one A lacks
+  fs::remove(b + "/elbow.0005.obj");
+  fs::copy_file(b + "/elbow.0004.obj", b + "/elbow.0006.obj");
+  CompareOptions common;
+  common.common = true;
+  const CompareResult r = compare_outputs(a, b, common);
+  ASSERT_EQ(r.frames.size(), 3u);
+  EXPECT_EQ(r.frames[0].a, a + "/elbow.0002.obj");
+  EXPECT_EQ(r.differing(), 0u);
+  EXPECT_EQ(r.only_in_a, (std::vector<std::string>{a + "/elbow.0001.obj", a + "/elbow.0005.obj"}));
+  EXPECT_EQ(r.only_in_b, (std::vector<std::string>{b + "/elbow.0006.obj"}));
+  // Nothing in common is still refused.
+  const std::string c = dir / "c";
+  fs::create_directories(c);
+  fs::copy_file(b + "/elbow.0006.obj", c + "/elbow.0007.obj");
+  const std::string m = refusal(a, c, ErrorKind::Input, common);
+  EXPECT_NE(m.find("have no frame in common"), std::string::npos) << m;
+}
+
+TEST(CompareOutputs, EachMeshOfAFolderInItsOwnDiagonal) {
+  // A folder holding two meshes' frames: the elbow's and a copy scaled by 10. The same vertex
+  // moved by the same share of each mesh's size reads the same distance in each.
+  const test::TempDir dir("compare_two_meshes");
+  const std::string a = elbow_copy(dir, "a"), b = elbow_copy(dir, "b");
+  const std::string frame = read_file(a + "/elbow.0003.obj");
+  // elbow.0003.obj's text with its `v` lines scaled, vertex 9's x then moved by nudge x scale.
+  const auto write_scaled = [&](const std::string& path, double scale, double nudge) {
+    std::istringstream in(frame);
+    std::ostringstream obj;
+    obj.precision(17);
+    int v = 0;
+    for (std::string l; std::getline(in, l);) {
+      if (l.rfind("v ", 0) != 0) {
+        obj << l << "\n";
+        continue;
+      }
+      std::istringstream xyz(l.substr(2));
+      double x = 0, y = 0, z = 0;
+      xyz >> x >> y >> z;
+      obj << "v " << scale * x + (v++ == 9 ? nudge * scale : 0) << " " << scale * y << " "
+          << scale * z << "\n";
+    }
+    write_file_atomic(path, obj.str());
+  };
+  write_scaled(a + "/big.0003.obj", 10, 0);
+  write_scaled(b + "/big.0003.obj", 10, 0.01);
+  write_scaled(a + "/elbow.0003.obj", 1, 0);
+  write_scaled(b + "/elbow.0003.obj", 1, 0.01);
+  const CompareResult r = compare_outputs(a, b, {});
+  ASSERT_EQ(r.frames.size(), 6u);
+  EXPECT_EQ(r.frames[0].a, a + "/big.0003.obj");  // the first frame: the big mesh's
+  EXPECT_EQ(r.frames[3].a, a + "/elbow.0003.obj");
+  EXPECT_NEAR(r.frames[0].diagonal, 10 * r.frames[3].diagonal, 1e-9);
+  EXPECT_NEAR(r.frames[0].difference.max_distance, r.frames[3].difference.max_distance, 1e-12);
+  EXPECT_NEAR(r.frames[3].difference.max_distance, 0.01 / r.frames[3].diagonal, 1e-12);
 }
 
 TEST(CompareOutputs, VertexAndFaceCountsMustMatch) {
@@ -201,7 +265,7 @@ TEST(CompareOutputs, CachesSampleBySample) {
   EXPECT_EQ(same.frames[1].a, dir / "a.pc2" + " sample 1 (frame 2)");
   EXPECT_EQ(same.differing(), 0u);
   EXPECT_FALSE(same.faces_checked);  // a cache has no faces
-  EXPECT_EQ(same.diagonal_from, dir / "a.pc2" + " sample 0 (frame 1)");
+  EXPECT_EQ(same.diagonal_from, "");
   // A real difference, and the bind's faces and diagonal with --bind.
   write_elbow_pc2(dir / "b.pc2", 1, 3, 0.05f);
   CompareOptions with_bind;
@@ -212,6 +276,31 @@ TEST(CompareOutputs, CachesSampleBySample) {
   EXPECT_EQ(r.differing(), 1u);
   EXPECT_EQ(r.frames[1].difference.vertex, 7);
   EXPECT_NEAR(r.frames[1].difference.max_distance * r.diagonal, 0.05, 1e-6);
+  EXPECT_EQ(r.frames[1].diagonal, r.diagonal);
+}
+
+TEST(CompareOutputs, CommonPairsCacheSamplesByFrameNumber) {
+  const test::TempDir dir("compare_cache_common");
+  write_elbow_pc2(dir / "a.pc2", 1, 4);        // frames 1-4
+  write_elbow_pc2(dir / "chunk.pc2", 3, 2);    // frames 3-4, data/elbow's first two
+  write_elbow_pc2(dir / "same.pc2", 1, 2);     // the chunk's positions at frames 1-2
+  CompareOptions common;
+  common.common = true;
+  const CompareResult r = compare_outputs(dir / "a.pc2", dir / "chunk.pc2", common);
+  ASSERT_EQ(r.frames.size(), 2u);
+  EXPECT_EQ(r.frames[0].a, dir / "a.pc2" + " sample 2 (frame 3)");
+  EXPECT_EQ(r.frames[0].b, dir / "chunk.pc2" + " sample 0 (frame 3)");
+  EXPECT_EQ(r.differing(), 2u);  // frame 3 of A against elbow.0001's positions
+  EXPECT_EQ(r.only_in_a, (std::vector<std::string>{dir / "a.pc2" + " sample 0 (frame 1)",
+                                                    dir / "a.pc2" + " sample 1 (frame 2)"}));
+  EXPECT_TRUE(r.only_in_b.empty());
+  const CompareResult s = compare_outputs(dir / "same.pc2", dir / "a.pc2", common);
+  EXPECT_EQ(s.frames.size(), 2u);
+  EXPECT_EQ(s.differing(), 0u);
+  EXPECT_EQ(s.only_in_b.size(), 2u);
+  write_elbow_pc2(dir / "later.pc2", 7, 2);
+  const std::string m = refusal(dir / "a.pc2", dir / "later.pc2", ErrorKind::Input, common);
+  EXPECT_NE(m.find("no sample in common"), std::string::npos) << m;
 }
 
 TEST(CompareOutputs, CachesOfOtherFramesAreRefused) {
@@ -248,6 +337,9 @@ TEST(CompareReport, JsonWithEveryFrameAndTheTotals) {
       << json;
   const std::string empty = compare_report_json(CompareResult{});
   EXPECT_NE(empty.find("\"frames\": [],"), std::string::npos) << empty;
+  EXPECT_NE(empty.find("\"diagonal\": null,\n  \"diagonal_from\": null"), std::string::npos)
+      << empty;
+  EXPECT_NE(empty.find("\"only_in_a\": [],\n  \"only_in_b\": [],"), std::string::npos) << empty;
   EXPECT_NE(empty.find("\"largest\": null"), std::string::npos) << empty;
 }
 
