@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <fstream>
-#include <limits>
 #include <optional>
+
+#include "core/nearest_name.h"
 
 namespace skinslide::cli {
 namespace {
@@ -19,34 +20,6 @@ std::vector<std::string> option_names(const CLI::App& app) {
       names.push_back(option->get_name(true));
   }
   return names;
-}
-
-// Levenshtein distance: the fewest one-character insertions, deletions and substitutions.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-// The name nearest to `key` (the first of equals, in declaration order).
-std::string nearest(const std::string& key, const std::vector<std::string>& names) {
-  std::string best;
-  std::size_t best_distance = std::numeric_limits<std::size_t>::max();
-  for (const std::string& name : names)
-    if (const std::size_t d = edit_distance(key, name); d < best_distance) {
-      best = name;
-      best_distance = d;
-    }
-  return best;
 }
 
 // The option a config key sets, as CLI11 applies a config item (App::_parse_single_config): the
@@ -192,7 +165,20 @@ void check_config_keys(const CLI::App& app) {
     if (!names_an_option(app, key))
       throw CLI::ConfigError(path + ":" + std::to_string(key.line) + ": unknown key '" +
                              full_name(key) + "'; the nearest option is '" +
-                             nearest(key.name, option_names(app)) + "'");
+                             nearest_name(key.name, option_names(app)) + "'");
+}
+
+void check_unknown_options(const CLI::App& app) {
+  std::vector<std::string> long_names;
+  for (const CLI::Option* option : app.get_options())
+    for (const std::string& name : option->get_lnames()) long_names.push_back("--" + name);
+  for (const std::string& arg : app.remaining()) {
+    if (arg.rfind("--", 0) != 0 || arg.size() == 2) continue;  // "--" ends the options
+    const std::string name = arg.substr(0, arg.find('='));
+    if (app.get_option_no_throw(name) != nullptr) continue;
+    throw CLI::ValidationError(name, "unknown option; the nearest option is " +
+                                         nearest_name(name, long_names));
+  }
 }
 
 void check_config_flags(const CLI::App& app) {

@@ -30,6 +30,12 @@ std::vector<ConfigKey> config_keys(std::istream& in);
 ///        (nearest by edit distance among the options a config file may set).
 void check_config_keys(const CLI::App& app);
 
+/// After a failed parse (cli::parse_error_exit): an argument CLI11 left over that is written as a long option (`--pach`,
+/// `--pach=x`) but names none of `app`'s.
+/// \throw CLI::ValidationError "--pach: unknown option; the nearest option is --patch" (nearest
+///        by edit distance among the long names).
+void check_unknown_options(const CLI::App& app);
+
 /// After a parse: with a --config file, each flag (an option without a value: --keep-going, -q)
 /// whose value the file gave takes one of the boolean forms CLI11 documents for config files,
 /// in any case: true/false, on/off, yes/no, 1/0, enable/disable, or the key alone (= true).

@@ -2,14 +2,23 @@
 
 #include <cstdio>
 #include <new>
+#include <string>
 
+#include "config_keys.h"
 #include "core/error.h"
 
 namespace skinslide::cli {
 
 int parse_error_exit(const CLI::App& app, const CLI::ParseError& error, const char* program) {
   if (error.get_exit_code() == 0) return app.exit(error);
-  std::fprintf(stderr, "%s: error: %s\nRun with --help for the options.\n", program, error.what());
+  std::string what = error.what();
+  // A misspelt option is what went wrong, whatever CLI11 found missing or extra after it.
+  try {
+    check_unknown_options(app);
+  } catch (const CLI::ParseError& unknown) {
+    what = unknown.what();
+  }
+  std::fprintf(stderr, "%s: error: %s\nRun with --help for the options.\n", program, what.c_str());
   return exit_code(ErrorKind::Usage);
 }
 

@@ -10,7 +10,8 @@
 namespace skinslide::cli {
 
 /// The exit of a command line CLI11 refused: --help and --version print and exit 0; anything
-/// else prints "<program>: error: <what>" and "Run with --help for the options." and exits 2.
+/// else prints "<program>: error: <what>" and "Run with --help for the options." and exits 2,
+/// <what> naming a misspelt option and the nearest one when there is one (check_unknown_options).
 int parse_error_exit(const CLI::App& app, const CLI::ParseError& error, const char* program);
 
 /// Runs `work` (the command's work once its options are read) and returns its exit code. An

@@ -20,6 +20,7 @@
 
 #include "cache_module.h"
 #include "core/version.h"
+#include "core/nearest_name.h"
 #include "core/option.h"
 #include "io/mesh_formats.h"
 #include "io/patch_file.h"
@@ -164,6 +165,22 @@ void take_options(py::dict& kwargs, Options& options) {
   }
 }
 
+// Slider's own keyword arguments, as its py::init below declares them: with the methods' options,
+// the names an unknown keyword may have meant.
+const std::vector<std::string> kSliderKeywords = {
+    "method", "pins", "weights", "strength", "corners", "outer_loop_vertices", "face_sizes",
+    "threads"};
+
+// "unknown option rotation_fit; the nearest option is rotation_fits": among Slider's keywords and
+// every method's options.
+std::string unknown_option(const std::string& name) {
+  std::vector<std::string> names = kSliderKeywords;
+  for_each_method([&](const std::string&, const auto& table) {
+    for (const auto& option : table) names.push_back(api_name(option.name));
+  });
+  return "unknown option " + name + "; the nearest option is " + nearest_name(name, names);
+}
+
 // The method and its options from keyword arguments; what is left over is refused, by name.
 SlideOptions slide_options(const std::string& method, py::dict options) {
   SlideOptions out = parse_method(method);
@@ -176,7 +193,7 @@ SlideOptions slide_options(const std::string& method, py::dict options) {
         if (other != method && api_name(option.name) == name)
           usage(name + " applies to method '" + other + "' only, not to method '" + method + "'");
     });
-    usage("unknown option " + name);
+    usage(unknown_option(name));
   }
   return out;
 }
@@ -383,7 +400,9 @@ PYBIND11_MODULE(skinslide, m) {
   add_cache_functions(m);  // write_cache, read_cache (cache_module.cpp)
   py::class_<Slider>(m, "Slider",
                      "A bind set-up: Slider(bind, faces, patches, *, method='elastic', pins=None, "
-                     "weights=None, **options); slide(frame) -> (positions, report).")
+                     "weights=None, strength=1.0, corners=None, outer_loop_vertices=None, "
+                     "face_sizes=None, threads=1, **options); slide(frame) -> (positions, "
+                     "report).")
       .def(py::init<const py::handle&, const py::handle&, const py::handle&, const std::string&,
                     const py::object&, const py::object&, double, const py::object&,
                     const py::object&, const py::object&, unsigned, const py::kwargs&>(),

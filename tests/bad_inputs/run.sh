@@ -688,6 +688,9 @@ printf '# every key an option\npatch = ["all.txt"]\nkeep-going\n[default]\nstren
 expect config_keys_all_options 0 "1 frames slid" --config "$tmp/good.toml" $B $F
 printf '\xEF\xBB\xBF' | cat - "$tmp/good.toml" >"$tmp/bom.toml"
 expect config_byte_order_mark 2 "bom.toml:1: the file starts with a UTF-8 byte-order mark" --config "$tmp/bom.toml" $B $F
+# A misspelt option on the command line: named, with the nearest, as a config file's key is.
+expect option_misspelt 2 "--pach: unknown option; the nearest option is --patch" --pach $P $B $F
+expect option_misspelt_with_value 2 "--rotation-fit: unknown option; the nearest option is --rotation-fits" --rotation-fit=2 --patch $P $B $F
 
 echo "bad_inputs: $passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]

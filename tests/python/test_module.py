@@ -212,6 +212,11 @@ def test_errors_raise_with_their_kinds(tmp_path):
         (lambda: make(convergence=float("nan")), skinslide.UsageError, "convergence"),
         (lambda: make(blend=1e-9), skinslide.UsageError, "below round-off"),
         (lambda: make(frobnicate=1), skinslide.UsageError, "unknown option frobnicate"),
+        # A misspelt keyword: the nearest one named, as the command line does (--pach).
+        (lambda: make(rotation_fit=2), skinslide.UsageError,
+         "unknown option rotation_fit; the nearest option is rotation_fits$"),
+        (lambda: make(face_size=face_sizes), skinslide.UsageError,
+         "unknown option face_size; the nearest option is face_sizes$"),
         (lambda: make(pins=[10**6]), skinslide.UsageError, "out of range"),
         (lambda: skinslide.Slider(positions, face_vertices, [10**6], face_sizes=face_sizes),
          skinslide.InputError, "out of range"),
