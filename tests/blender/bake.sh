@@ -18,8 +18,7 @@ if ! command -v blender >/dev/null 2>&1; then
   echo "bake.sh: installing blender (Debian)" >&2
   # scripts/deps.sh: the one installer, one apt-get at a time (tests/cli/blender_cache.sh may be
   # installing Blender at the same moment).
-  apt_log=$("$root/scripts/deps.sh" blender 2>&1) ||
-    cannot "apt-get install blender failed: $(tail -n 1 <<<"$apt_log")"
+  install_or_cannot blender
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -29,8 +29,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 if ! command -v "$blender" >/dev/null; then
-  "$root/scripts/deps.sh" blender >"$tmp/apt.log" 2>&1 ||
-    cannot "cannot install blender: $(tail -n 1 "$tmp/apt.log")"
+  install_or_cannot blender
   command -v "$blender" >/dev/null || cannot "blender is not on the PATH after installing it"
 fi
 

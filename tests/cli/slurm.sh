@@ -45,8 +45,7 @@ check() {
 [ "$(id -u)" -eq 0 ] || cannot "slurm.sh needs root: slurmd starts the jobs, apt-get installs slurm-wlm"
 for tool in munged slurmctld slurmd sbatch squeue scancel scontrol; do
   if ! command -v "$tool" >/dev/null; then
-    apt_log=$("$root/scripts/deps.sh" slurm-wlm munge 2>&1) ||
-      cannot "cannot install slurm-wlm munge: $(tail -n 1 <<<"$apt_log")"
+    install_or_cannot slurm-wlm munge
     break
   fi
 done
