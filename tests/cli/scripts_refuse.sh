@@ -48,7 +48,7 @@ scripts=()
 for f in "$root"/tests/cli/*.sh "$root"/tests/blender/*.sh "$root"/tests/bad_inputs/run.sh; do
   case $(basename "$f") in
     harness.sh | cannot.sh | require.sh) ;;                  # sourced by the others
-    scripts_refuse.sh | demo_build.sh | install_notice.sh) ;; # need nothing
+    scripts_refuse.sh | demo_build.sh | install_notice.sh | ignored.sh) ;; # need nothing
     slurm_task.sh) ;;                                        # below
     *) scripts+=("${f#"$root"/}") ;;
   esac
