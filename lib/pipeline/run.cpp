@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstddef>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <new>
@@ -20,6 +22,7 @@
 #include "pipeline/dumps.h"
 #include "pipeline/frame_sources.h"
 #include "pipeline/frame_window.h"
+#include "pipeline/input_checks.h"
 #include "pipeline/report.h"
 
 namespace skinslide {
@@ -64,11 +67,12 @@ FrameOutcome run_chosen_frame(const BindSetup& setup, const MeshFile& bind,
 // The frame loop: the chosen frames on `threads` threads, each a pure function of its frame (and
 // with --window of its window's relaxations); per chosen frame its error, if it failed. Stops at
 // the first failure unless --keep-going.
-std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunEvents& events,
-                                                 const BindSetup& setup, const MeshFile& bind,
-                                                 const FrameSource& source, CacheWriter* cache_out,
-                                                 unsigned threads, RunReport& report,
-                                                 std::atomic<size_t>& not_converged) {
+// `errors` holds the chosen frames already known to fail (a FRAME file that cannot be read,
+// under --keep-going): they are told as failed, not read.
+void slide_frames(const RunOptions& o, const RunEvents& events, const BindSetup& setup,
+                  const MeshFile& bind, const FrameSource& source, CacheWriter* cache_out,
+                  unsigned threads, RunReport& report, std::atomic<size_t>& not_converged,
+                  std::vector<std::unique_ptr<Error>>& errors) {
   const std::vector<size_t>& chosen = source.plan.chosen;
   const std::unique_ptr<RelaxationStore> store = relaxation_store(o, setup, bind, source);
   const size_t count = chosen.size();
@@ -77,11 +81,15 @@ std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunE
   };
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
-  std::vector<std::unique_ptr<Error>> errors(count);
   if (!o.report.empty()) report.frames.resize(count);
   auto worker = [&] {
     for (size_t j; !stop && (j = next++) < count;) {
       const size_t i = chosen[j];
+      if (errors[j]) {
+        if (store) store->done(i);
+        done(j, {});
+        continue;
+      }
       const std::string& label = frame_label(o, source, i);
       const CacheSlot slot{cache_out, j};  // the chosen frames are one run of samples
       try {
@@ -111,12 +119,38 @@ std::vector<std::unique_ptr<Error>> slide_frames(const RunOptions& o, const RunE
   std::vector<std::thread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (std::thread& t : pool) t.join();
+}
+
+// The run's first output in its folder: the cache, or the first chosen frame's file.
+const std::string& first_output(const FramePlan& plan) {
+  return plan.cache.empty() ? plan.outputs[plan.chosen.front()] : plan.cache;
+}
+
+// Per chosen frame, its error when its FRAME file cannot be read (check_inputs, --keep-going),
+// each told now, at once, before the bind is read; `told` marks them.
+std::vector<std::unique_ptr<Error>> unreadable_chosen(const std::vector<UnreadableFrame>& bad,
+                                                      const FramePlan& plan,
+                                                      std::vector<bool>& told,
+                                                      const std::function<void(const LogLine&)>& log) {
+  std::vector<std::unique_ptr<Error>> errors(plan.chosen.size());
+  told.assign(plan.chosen.size(), false);
+  std::vector<std::ptrdiff_t> slot(plan.outputs.size(), -1);
+  for (size_t j = 0; j < plan.chosen.size(); ++j) slot[plan.chosen[j]] = static_cast<std::ptrdiff_t>(j);
+  for (const UnreadableFrame& f : bad) {
+    if (f.frame >= slot.size() || slot[f.frame] < 0) continue;
+    const auto j = static_cast<size_t>(slot[f.frame]);
+    errors[j] = std::make_unique<Error>(f.error);
+    told[j] = true;
+    log({LogLevel::Error, std::string("skinslide: error: ") + f.error.what()});
+  }
   return errors;
 }
 
 }  // namespace
 
-RunResult run(const RunOptions& o, const RunEvents& events) {
+RunResult run(const RunOptions& given, const RunEvents& events) {
+  RunOptions o = given;
+  if (o.format.empty() && !is_cache_run(o.frames)) o.format = cache_format_named_by(o.output);
   // Whatever the run reads, no output of it replaces (io/run_inputs.h).
   const InputScope inputs;
   const auto log = [&](const LogLine& line) {
@@ -130,6 +164,11 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   if (!files) (void)frame_ranges(o);
   FramePlan files_plan = files ? plan_frames(o) : FramePlan{};
   if (files && (!o.dump_dir.empty() || !o.preview_dir.empty())) check_dump_stems(o.frames);
+  // Every input looked at before any is read (input_checks.h): a missing frame fails now.
+  const std::vector<UnreadableFrame> unreadable = check_inputs(o, files_plan.chosen);
+  std::vector<bool> told;
+  std::vector<std::unique_ptr<Error>> errors =
+      unreadable_chosen(unreadable, files_plan, told, log);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored.
   const MeshReadOptions read_options = mesh_read_options(o);
@@ -137,6 +176,8 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
       o.rig ? read_gltf_file(o.bind, read_options) : read_mesh_file(o.bind, read_options);
   const FrameSource source = frame_source(o, bind, std::move(files_plan), cache_run);
   const FramePlan& plan = source.plan;
+  check_output_folder(plan.folder, first_output(plan));
+  if (!files) errors.resize(plan.chosen.size());
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
     selections.push_back(selected_faces(read_patch(p), bind.mesh.face_count()));
@@ -179,8 +220,8 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
                              (o.threads == 0 ? " (-j 0: the cores this task may use)" : "")});
   if (events.frames_begin) events.frames_begin(count);
   std::atomic<size_t> not_converged{0};
-  std::vector<std::unique_ptr<Error>> errors =
-      slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report, not_converged);
+  slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report, not_converged,
+               errors);
   if (events.frames_end) events.frames_end();
   // A cache has no holes: it appears only when every chosen frame is in it.
   const bool all_written =
@@ -196,12 +237,13 @@ RunResult run(const RunOptions& o, const RunEvents& events) {
   RunResult result;
   result.frames = count;
   result.not_converged = not_converged;
-  for (const auto& e : errors)
-    if (e) {
+  for (size_t j = 0; j < errors.size(); ++j)
+    if (const auto& e = errors[j]) {
       // The first bad frame in list order decides the exit code.
       if (!o.keep_going) throw *e;
       result.failures.push_back(*e);
-      log({LogLevel::Error, std::string("skinslide: error: ") + e->what()});
+      if (j >= told.size() || !told[j])
+        log({LogLevel::Error, std::string("skinslide: error: ") + e->what()});
     }
   if (cache_out && !all_written)
     log({LogLevel::Error, "skinslide: error: " + plan.cache +

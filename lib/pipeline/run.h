@@ -45,6 +45,8 @@ struct RunResult {
 /// (or poses), slides and writes the chosen frames on `threads` threads, each frame's dumps and
 /// previews before its slid file; syncs the folders and writes the report. The outputs depend
 /// on the inputs and options only, never on `threads` or the frames' order of completion.
+/// An --output named like a cache (`shot.pc2`) with no --format is --format pc2 (FRAME files, a
+/// clip; cache_format_named_by).
 /// \throw Error: Usage for the plan's refusals and bad controls, Input for unreadable or
 ///        malformed inputs, Output when a folder or the report cannot be written; without
 ///        keep_going, the first failed frame's error (in frame order), after the frames started
