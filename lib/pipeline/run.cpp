@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <new>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -41,14 +42,32 @@ void make_output_dir(const std::string& dir) {
 
 // --window's relaxations of the run's frames, shared by the frame loop's threads; null without
 // a window (or without a slide).
-std::unique_ptr<RelaxationStore> relaxation_store(const RunOptions& o, const BindSetup& setup,
-                                                  const MeshFile& bind, const FrameSource& source) {
-  if (o.window == 0 || o.no_slide) return nullptr;
+// The order of the run's frames for --window (none without a window or a slide).
+std::optional<WindowPlan> run_window_plan(const RunOptions& o, const FrameSource& source) {
+  if (o.window == 0 || o.no_slide) return std::nullopt;
   WindowPlan plan = o.rig                ? ordered_window_plan(o.window, source.clip.names.size())
                     : source.cache.cache ? ordered_window_plan(o.window, source.cache.names.size())
                                          : files_window_plan(o.window, o.frames);
   plan.cycle = o.window_ends == WindowEnds::Cycle;
-  return std::make_unique<RelaxationStore>(plan, source.plan.chosen, [&, o](size_t i) {
+  return plan;
+}
+
+// What a windowed run tells once about its ends (frame_window.h window_ends_line).
+std::optional<LogLine> run_window_line(const RunOptions& o, const FrameSource& source,
+                                       const std::optional<WindowPlan>& plan) {
+  if (!plan) return std::nullopt;
+  const bool files = !o.rig && !source.cache.cache;
+  const std::vector<std::string>& labels =
+      o.rig ? source.clip.names : files ? o.frames : source.cache.names;
+  return window_ends_line(*plan, source.plan.chosen, labels,
+                          files ? o.frames : std::vector<std::string>{}, o.frame_ranges);
+}
+
+std::unique_ptr<RelaxationStore> relaxation_store(const RunOptions& o, const BindSetup& setup,
+                                                  const MeshFile& bind, const FrameSource& source) {
+  const std::optional<WindowPlan> plan = run_window_plan(o, source);
+  if (!plan) return nullptr;
+  return std::make_unique<RelaxationStore>(*plan, source.plan.chosen, [&, o](size_t i) {
     return relax_source_frame(setup, bind, source, o, i);
   });
 }
@@ -67,11 +86,17 @@ FrameOutcome run_chosen_frame(const BindSetup& setup, const MeshFile& bind,
 // The frame loop: the chosen frames on `threads` threads, each a pure function of its frame (and
 // with --window of its window's relaxations); per chosen frame its error, if it failed. Stops at
 // the first failure unless --keep-going.
+// What the frame loop's threads count.
+struct RunCounts {
+  std::atomic<size_t> not_converged{0};
+  std::atomic<size_t> window_costly{0};
+};
+
 // `errors` holds the chosen frames already known to fail (a FRAME file that cannot be read,
 // under --keep-going): they are told as failed, not read.
 void slide_frames(const RunOptions& o, const RunEvents& events, const BindSetup& setup,
                   const MeshFile& bind, const FrameSource& source, CacheWriter* cache_out,
-                  unsigned threads, RunReport& report, std::atomic<size_t>& not_converged,
+                  unsigned threads, RunReport& report, RunCounts& counts,
                   std::vector<std::unique_ptr<Error>>& errors) {
   const std::vector<size_t>& chosen = source.plan.chosen;
   const std::unique_ptr<RelaxationStore> store = relaxation_store(o, setup, bind, source);
@@ -97,7 +122,8 @@ void slide_frames(const RunOptions& o, const RunEvents& events, const BindSetup&
         FrameOutcome outcome =
             run_chosen_frame(setup, bind, source, o, i, slot, record, store.get());
         if (store) store->done(i);
-        if (!outcome.converged) ++not_converged;
+        if (!outcome.converged) ++counts.not_converged;
+        if (outcome.window_costly) ++counts.window_costly;
         done(j, std::move(outcome.lines));
         continue;
       } catch (const Error& e) {
@@ -203,6 +229,8 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
                        threads, [&](Index s) { return "--patch " + o.patches[s]; });
   report.bind_seconds = seconds_since(t_run);
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
+  if (const std::optional<LogLine> line = run_window_line(o, source, run_window_plan(o, source)))
+    log(*line);
   make_output_dir(plan.folder);
   if (!o.dump_dir.empty())
     write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions,
@@ -219,9 +247,8 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
                              " at a time" +
                              (o.threads == 0 ? " (-j 0: the cores this task may use)" : "")});
   if (events.frames_begin) events.frames_begin(count);
-  std::atomic<size_t> not_converged{0};
-  slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report, not_converged,
-               errors);
+  RunCounts counts;
+  slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report, counts, errors);
   if (events.frames_end) events.frames_end();
   // A cache has no holes: it appears only when every chosen frame is in it.
   const bool all_written =
@@ -236,7 +263,8 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
   }
   RunResult result;
   result.frames = count;
-  result.not_converged = not_converged;
+  result.not_converged = counts.not_converged;
+  result.window_costly = counts.window_costly;
   for (size_t j = 0; j < errors.size(); ++j)
     if (const auto& e = errors[j]) {
       // The first bad frame in list order decides the exit code.

@@ -38,6 +38,9 @@ struct RunResult {
   std::size_t frames = 0;         ///< frames --frames selected (written + failed)
   std::vector<Error> failures;    ///< keep_going: each failed frame's error (logged), frame order
   std::size_t not_converged = 0;  ///< frames written with a patch that did not converge
+  /// Frames written whose --window mean costs them ten points of energy or more (their lines say
+  /// "X% without the window": log_lines.h window_costly).
+  std::size_t window_costly = 0;
 };
 
 /// Runs it all: plans the outputs (plan_frames / plan_rig_frames), reads the bind and the patch
