@@ -56,7 +56,8 @@ int run_and_print(const cli::CliOptions& o) {
   const RunResult result = skinslide::run(cli::run_options(o), events);
   const size_t failed = result.failures.size();
   std::string counts;
-  if (result.not_converged) counts += " (" + std::to_string(result.not_converged) + " not converged)";
+  if (result.not_converged)
+    counts += " (" + std::to_string(result.not_converged) + " not converged)";
   // A window that costs frames much energy is told with what to do about it, once.
   if (result.window_costly)
     counts += " (" + std::to_string(result.window_costly) +

@@ -88,9 +88,10 @@ void refuse_mesh_output(const RunOptions& o) {
   const std::string ext = lower_extension(o.output);
   if (ext == ".obj" || ext == ".gltf" || ext == ".glb")
     throw Error(ErrorKind::Usage,
-                "-o " + o.output + ": -o is a folder, not a mesh file: the slid frames keep "
-                "their own names in it (-o slid/); one file for a shot is a point cache (-o "
-                "shot.pc2)");
+                "-o " + o.output +
+                    ": -o is a folder, not a mesh file: the slid frames keep "
+                    "their own names in it (-o slid/); one file for a shot is a point cache (-o "
+                    "shot.pc2)");
 }
 
 // Indices of the frames that --frames selects, in list order, by the frame number in each

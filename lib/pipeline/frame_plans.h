@@ -45,9 +45,10 @@ CacheTarget cache_target(const std::string& output, const std::string& stem,
 /// system only to tell whether two paths are one file (io/file_key.h: a stat a path, O(n)).
 /// \throw Error(Input) "PATH: cannot read: REASON" for an input the system cannot look at (a
 ///        folder on its way the user may not enter), Error(Output) "cannot write" for an output;
-///        Error(Usage) for: an --output named like a mesh file (`-o shot.obj`: it is a folder); a BIND named as a member of the FRAME sequence (frame_sequence: the
-///        bind forgotten, a frame taken for it) unless --bind-is-frame; a malformed --frames; two
-///        frames with one file name; an output that is an input (BIND, FRAME, --patch,
+///        Error(Usage) for: an --output named like a mesh file (`-o shot.obj`: it is a folder); a
+///        BIND named as a member of the FRAME sequence (frame_sequence: the bind forgotten, a frame
+///        taken for it) unless --bind-is-frame; a malformed --frames; two frames with one file
+///        name; an output that is an input (BIND, FRAME, --patch,
 ///        --weights, --pin); a --report that is an input or a frame's output; with --frames, a
 ///        frame without a number or a selection of none; for a cache: numbers that do not rise
 ///        by one step (PC2) or at all (MDD), some files numbered and some not, MDD without
@@ -59,7 +60,8 @@ FramePlan plan_frames(const RunOptions& options);
 /// with a cache format, one cache of the chosen frames (OUTPUT/<character stem>.pc2, or a chunk
 /// named by its first and last frame: cache_frames.h cache_output_path).
 /// \throw Error(Usage) for: an --output named like a mesh file; a malformed --frames; an output
-///        that is BIND or a --patch file; a --frames selecting none, or, for a cache, frames with gaps between them.
+///        that is BIND or a --patch file; a --frames selecting none, or, for a cache, frames with
+///        gaps between them.
 FramePlan plan_rig_frames(const RunOptions& options, const std::vector<std::string>& names);
 
 /// The plan of a run whose FRAME is a point cache (`cache`, whose samples have the frame names

@@ -41,7 +41,8 @@ std::optional<std::string> sequence_neighbour(const std::string& path, long long
 
 // The given FRAME files' first and last, when a file of their sequence lies beside either on
 // disk: the warning, with the glob and --frames to pass instead.
-std::optional<LogLine> cut_short_line(const WindowPlan& plan, const std::vector<std::size_t>& chosen,
+std::optional<LogLine> cut_short_line(const WindowPlan& plan,
+                                      const std::vector<std::size_t>& chosen,
                                       const std::vector<std::string>& paths,
                                       const std::string& frame_ranges) {
   const std::string& first = paths[plan.order.front()];
@@ -56,7 +57,8 @@ std::optional<LogLine> cut_short_line(const WindowPlan& plan, const std::vector<
   if (!before && !after) return std::nullopt;
   std::string where;
   if (before) where = "start at " + first + " with " + *before + " beside it";
-  if (after) where += (before ? " and end at " : "end at ") + last + " with " + *after + " beside it";
+  if (after)
+    where += (before ? " and end at " : "end at ") + last + " with " + *after + " beside it";
   long long low = *frame_number(paths[chosen.front()]), high = low;
   for (std::size_t i : chosen) {
     low = std::min(low, *frame_number(paths[i]));
@@ -72,8 +74,8 @@ std::optional<LogLine> cut_short_line(const WindowPlan& plan, const std::vector<
                      ": the frames given " + where +
                      ": the windows there are cut short where a run of the whole sequence has "
                      "neighbours, so these frames are not what that run writes. Give the whole "
-                     "sequence and this chunk: --window " + std::to_string(plan.reach) +
-                     " --frames " + ranges + " " + glob};
+                     "sequence and this chunk: --window " +
+                     std::to_string(plan.reach) + " --frames " + ranges + " " + glob};
 }
 
 // Chosen frames short of the given ends: the frames beside them their windows relax.
@@ -91,28 +93,30 @@ std::optional<LogLine> chunk_line(const WindowPlan& plan, const std::vector<std:
   }
   const auto extra = static_cast<std::size_t>(std::count(beside.begin(), beside.end(), 1));
   if (extra == 0) return std::nullopt;
-  return LogLine{LogLevel::Info,
-                 "skinslide: --window " + std::to_string(plan.reach) + ": " +
-                     (chosen.size() == 1 ? "the frame chosen, " + labels[first] + ", is"
-                                         : "the " + std::to_string(chosen.size()) +
-                                               " frames chosen, " + labels[first] + " to " +
-                                               labels[last] + ", are") +
-                     " a chunk of the " + std::to_string(plan.order.size()) +
-                     " given: " + std::to_string(extra) +
-                     " frames beside them are relaxed for their windows, not written, as one "
-                     "run of the whole sequence does (a farm task is given the whole sequence "
-                     "and its own --frames)"};
+  return LogLine{
+      LogLevel::Info,
+      "skinslide: --window " + std::to_string(plan.reach) + ": " +
+          (chosen.size() == 1 ? "the frame chosen, " + labels[first] + ", is"
+                              : "the " + std::to_string(chosen.size()) + " frames chosen, " +
+                                    labels[first] + " to " + labels[last] + ", are") +
+          " a chunk of the " + std::to_string(plan.order.size()) +
+          " given: " + std::to_string(extra) +
+          " frames beside them are relaxed for their windows, not written, as one "
+          "run of the whole sequence does (a farm task is given the whole sequence "
+          "and its own --frames)"};
 }
 
 }  // namespace
 
-std::optional<LogLine> window_ends_line(const WindowPlan& plan, const std::vector<std::size_t>& chosen,
+std::optional<LogLine> window_ends_line(const WindowPlan& plan,
+                                        const std::vector<std::size_t>& chosen,
                                         const std::vector<std::string>& labels,
                                         const std::vector<std::string>& paths,
                                         const std::string& frame_ranges) {
   if (plan.order.empty() || chosen.empty()) return std::nullopt;
   if (!paths.empty())
-    if (std::optional<LogLine> line = cut_short_line(plan, chosen, paths, frame_ranges)) return line;
+    if (std::optional<LogLine> line = cut_short_line(plan, chosen, paths, frame_ranges))
+      return line;
   return chunk_line(plan, chosen, labels);
 }
 

@@ -49,7 +49,8 @@ WindowPlan ordered_window_plan(int reach, std::size_t count);
 ///    line, the frames beside the chunk relaxed for its windows and not written, as one run does.
 /// `labels` names each frame (a FRAME file, a cache's or clip's frame); `paths` is empty for a
 /// cache or a clip (nothing beside them on disk). None when neither holds.
-std::optional<LogLine> window_ends_line(const WindowPlan& plan, const std::vector<std::size_t>& chosen,
+std::optional<LogLine> window_ends_line(const WindowPlan& plan,
+                                        const std::vector<std::size_t>& chosen,
                                         const std::vector<std::string>& labels,
                                         const std::vector<std::string>& paths,
                                         const std::string& frame_ranges);

@@ -87,9 +87,9 @@ void check_output_folder(const std::string& folder, const std::string& first_out
   fs::path above = fs::path(folder).parent_path();
   while (!above.empty() && !fs::exists(above, ec)) above = above.parent_path();
   if (above.empty()) above = ".";
-  const int fault = !fs::is_directory(above, ec)                    ? ENOTDIR
+  const int fault = !fs::is_directory(above, ec)                ? ENOTDIR
                     : ::access(above.c_str(), W_OK | X_OK) != 0 ? errno
-                                                                    : 0;
+                                                                : 0;
   if (fault != 0)
     throw Error(ErrorKind::Output,
                 folder + ": cannot create the output folder: " + std::strerror(fault));

@@ -50,10 +50,11 @@ std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& resu
   // frame at rest comes back unchanged whatever is left of its float32 rounding.
   bool any_free = false;
   for (const Patch& p : setup.patches) any_free = any_free || !p.skipped;
-  const std::string summary = !any_free                             ? "no free vertex: nothing slides"
-                              : !has_figures(setup, result.patches) ? std::string(kAtRest)
-                                                                    : frame_summary(setup.method, setup.patches, report,
-                                                            ", max slide " + log_number(max_slide));
+  const std::string summary = !any_free ? "no free vertex: nothing slides"
+                              : !has_figures(setup, result.patches)
+                                  ? std::string(kAtRest)
+                                  : frame_summary(setup.method, setup.patches, report,
+                                                  ", max slide " + log_number(max_slide));
   std::vector<LogLine> lines;
   lines.push_back({LogLevel::Info, "skinslide: " + frame_path + ": " +
                                        std::to_string(setup.patches.size()) + " patches, " +

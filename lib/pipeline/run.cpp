@@ -40,8 +40,6 @@ void make_output_dir(const std::string& dir) {
     throw Error(ErrorKind::Output, dir + ": cannot create the output folder: " + ec.message());
 }
 
-// --window's relaxations of the run's frames, shared by the frame loop's threads; null without
-// a window (or without a slide).
 // The order of the run's frames for --window (none without a window or a slide).
 std::optional<WindowPlan> run_window_plan(const RunOptions& o, const FrameSource& source) {
   if (o.window == 0 || o.no_slide) return std::nullopt;
@@ -57,12 +55,15 @@ std::optional<LogLine> run_window_line(const RunOptions& o, const FrameSource& s
                                        const std::optional<WindowPlan>& plan) {
   if (!plan) return std::nullopt;
   const bool files = !o.rig && !source.cache.cache;
-  const std::vector<std::string>& labels =
-      o.rig ? source.clip.names : files ? o.frames : source.cache.names;
+  const std::vector<std::string>& labels = o.rig   ? source.clip.names
+                                           : files ? o.frames
+                                                   : source.cache.names;
   return window_ends_line(*plan, source.plan.chosen, labels,
                           files ? o.frames : std::vector<std::string>{}, o.frame_ranges);
 }
 
+// --window's relaxations of the run's frames, shared by the frame loop's threads; null without
+// a window (or without a slide).
 std::unique_ptr<RelaxationStore> relaxation_store(const RunOptions& o, const BindSetup& setup,
                                                   const MeshFile& bind, const FrameSource& source) {
   const std::optional<WindowPlan> plan = run_window_plan(o, source);
@@ -83,17 +84,17 @@ FrameOutcome run_chosen_frame(const BindSetup& setup, const MeshFile& bind,
   return run_source_frame(setup, bind, source, o, i, slot, record, &windowed);
 }
 
-// The frame loop: the chosen frames on `threads` threads, each a pure function of its frame (and
-// with --window of its window's relaxations); per chosen frame its error, if it failed. Stops at
-// the first failure unless --keep-going.
 // What the frame loop's threads count.
 struct RunCounts {
   std::atomic<size_t> not_converged{0};
   std::atomic<size_t> window_costly{0};
 };
 
-// `errors` holds the chosen frames already known to fail (a FRAME file that cannot be read,
-// under --keep-going): they are told as failed, not read.
+// The frame loop: the chosen frames on `threads` threads, each a pure function of its frame (and
+// with --window of its window's relaxations); per chosen frame its error in `errors`, if it
+// failed. Stops at the first failure unless --keep-going. `errors` comes holding the frames
+// already known to fail (a FRAME file that cannot be read, under --keep-going): they are told as
+// failed, not read.
 void slide_frames(const RunOptions& o, const RunEvents& events, const BindSetup& setup,
                   const MeshFile& bind, const FrameSource& source, CacheWriter* cache_out,
                   unsigned threads, RunReport& report, RunCounts& counts,
@@ -152,22 +153,23 @@ const std::string& first_output(const FramePlan& plan) {
   return plan.cache.empty() ? plan.outputs[plan.chosen.front()] : plan.cache;
 }
 
-// Per chosen frame, its error when its FRAME file cannot be read (check_inputs, --keep-going),
-// each told now, at once, before the bind is read; `told` marks them.
-std::vector<std::unique_ptr<Error>> unreadable_chosen(const std::vector<UnreadableFrame>& bad,
-                                                      const FramePlan& plan,
-                                                      std::vector<bool>& told,
-                                                      const std::function<void(const LogLine&)>& log) {
+// Per chosen frame, its error when its FRAME file cannot be read (check_inputs, --keep-going);
+// every such file is told now, at once, before the bind is read (one that is only a --window
+// neighbour too); `told` marks the chosen ones.
+std::vector<std::unique_ptr<Error>> unreadable_chosen(
+    const std::vector<UnreadableFrame>& bad, const FramePlan& plan, std::vector<bool>& told,
+    const std::function<void(const LogLine&)>& log) {
   std::vector<std::unique_ptr<Error>> errors(plan.chosen.size());
   told.assign(plan.chosen.size(), false);
   std::vector<std::ptrdiff_t> slot(plan.outputs.size(), -1);
-  for (size_t j = 0; j < plan.chosen.size(); ++j) slot[plan.chosen[j]] = static_cast<std::ptrdiff_t>(j);
+  for (size_t j = 0; j < plan.chosen.size(); ++j)
+    slot[plan.chosen[j]] = static_cast<std::ptrdiff_t>(j);
   for (const UnreadableFrame& f : bad) {
+    log({LogLevel::Error, std::string("skinslide: error: ") + f.error.what()});
     if (f.frame >= slot.size() || slot[f.frame] < 0) continue;
     const auto j = static_cast<size_t>(slot[f.frame]);
     errors[j] = std::make_unique<Error>(f.error);
     told[j] = true;
-    log({LogLevel::Error, std::string("skinslide: error: ") + f.error.what()});
   }
   return errors;
 }
@@ -193,8 +195,7 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
   // Every input looked at before any is read (input_checks.h): a missing frame fails now.
   const std::vector<UnreadableFrame> unreadable = check_inputs(o, files_plan.chosen);
   std::vector<bool> told;
-  std::vector<std::unique_ptr<Error>> errors =
-      unreadable_chosen(unreadable, files_plan, told, log);
+  std::vector<std::unique_ptr<Error>> errors = unreadable_chosen(unreadable, files_plan, told, log);
 
   // With --animation, BIND is a rigged glTF character: the bind is its mesh as stored.
   const MeshReadOptions read_options = mesh_read_options(o);
