@@ -18,9 +18,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Why `path` cannot be read, in read_file's words (io/atomic_write.h); none when it can.
+// Why `path` cannot be read, in read_file's words (io/atomic_write.h); none when it can. Without
+// blocking: a named pipe opens at once here, and is read (or waited for) by its reader.
 std::optional<Error> unreadable(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) return Error(ErrorKind::Input, path + ": cannot read: " + std::strerror(errno));
   struct stat st {};
   const bool folder = ::fstat(fd, &st) == 0 && S_ISDIR(st.st_mode);
