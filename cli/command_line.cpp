@@ -8,6 +8,7 @@
 #include "config_keys.h"
 #include "core/file_extension.h"
 #include "core/version.h"
+#include "pipeline/frame_plans.h"
 
 namespace skinslide::cli {
 namespace {
@@ -363,6 +364,8 @@ void check_options(const CLI::App& app, CliOptions& o) {
                                "give at least one FRAME, or --animation with a rigged glTF BIND");
   const bool cache_frame = r.frames.size() == 1 && cache_format(r.frames.front());
   const bool frame_files = !o.has_rig && !cache_frame;
+  // `-o shot.pc2` with no --format names the cache to write (pipeline/frame_plans.h).
+  if (!cache_frame && app.count("--format") == 0) o.run.format = cache_format_named_by(r.output);
   if (app.count("--format") > 0 && frame_files && (r.format == "obj" || r.format == "glb"))
     throw CLI::ValidationError("--format",
                                "obj or glb applies to --animation or a point cache FRAME (.pc2, "

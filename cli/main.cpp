@@ -35,7 +35,7 @@ int run_and_print(const cli::CliOptions& o) {
       o.quiet ? cli::Verbosity::Quiet
               : (o.verbose ? cli::Verbosity::Verbose : cli::Verbosity::Normal);
   const auto shown = [&](LogLevel level) {
-    return level == LogLevel::Error ||
+    return level == LogLevel::Error || level == LogLevel::Warning ||
            (level == LogLevel::Info && verbosity != cli::Verbosity::Quiet) ||
            verbosity == cli::Verbosity::Verbose;
   };
@@ -56,12 +56,21 @@ int run_and_print(const cli::CliOptions& o) {
   events.frames_end = [&] { progress->finish(); };
   const RunResult result = skinslide::run(cli::run_options(o), events);
   const size_t failed = result.failures.size();
+  std::string counts;
+  if (result.not_converged)
+    counts += " (" + std::to_string(result.not_converged) + " not converged)";
+  // A window that costs frames much energy is told with what to do about it, once.
+  if (result.window_costly)
+    counts += " (" + std::to_string(result.window_costly) +
+              " whose --window mean costs ten points of energy or more, 'X% without the window' on "
+              "their lines: try a smaller --window" +
+              (o.words.at(window_ends_option().name) == "cycle"
+                   ? std::string(", --window-ends one-sided if the shot is not a loop")
+                   : std::string(", --window-ends cycle for a loop")) +
+              ", or no window for separate poses)";
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
     std::fprintf(stderr, "skinslide: %zu frames %s%s%s in %.2f s -> %s\n", result.frames - failed,
-                 o.run.no_slide ? "copied" : "slid",
-                 result.not_converged
-                     ? (" (" + std::to_string(result.not_converged) + " not converged)").c_str()
-                     : "",
+                 o.run.no_slide ? "copied" : "slid", counts.c_str(),
                  failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
                  progress->elapsed_seconds(), o.run.output.c_str());
   return failed ? exit_code(result.failures.front().kind()) : 0;

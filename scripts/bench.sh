@@ -41,6 +41,16 @@
 #     vertices --peer-e2e-frames-big, default 2) with -j1, wall seconds per frame, against the
 #     same command with --no-slide (the I/O floor); peak memory with -j1 and with -j2.
 # --peers-only: the peer table alone (no stage, command or ICT runs).
+#
+# --scale ["100 1000 10000"]: how a run's cost grows with its number of frames, alone (no other
+# table; builds the command only; SKINSLIDE=path benchmarks that binary instead). data/elbow's
+# bind and patch with N OBJ frames (links to its 5 frames, elbow.00001.obj ...) and one PC2
+# cache of N samples (its 5 samples repeated). Per N, medians over RUNS runs, -j 1, wall clock:
+#   - start-up: `--no-slide --frames 1` (the frames planned and checked, one frame copied; no
+#     bind set-up), and `--frames 1` (the same with the bind's set-up and one frame slid);
+#   - per frame: every frame copied (`--no-slide`), seconds over N;
+#   - peak memory of that run (/usr/bin/time %M).
+# Each figure should be flat in N (start-up and memory) or in N's per-frame share.
 set -euo pipefail
 export LC_ALL=C  # '.' decimal points in $EPOCHREALTIME and awk
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -56,7 +66,8 @@ peer_frames=1
 peer_repeats=9
 peer_e2e_frames=20
 peer_e2e_frames_big=2
-usage="usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict] [--peers | --peers-only] [--peer-sizes SIZES] [--peer-frames N] [--peer-repeats N] [--peer-e2e-frames N] [--peer-e2e-frames-big N]"
+scale=
+usage="usage: scripts/bench.sh [-s SIZES] [-f FRAMES] [-F FRAMES_BIG] [-r RUNS] [--no-ict] [--peers | --peers-only] [--peer-sizes SIZES] [--peer-frames N] [--peer-repeats N] [--peer-e2e-frames N] [--peer-e2e-frames-big N] [--scale [COUNTS]]"
 while [ $# -gt 0 ]; do
   case $1 in
     -s) sizes=$2; shift 2 ;;
@@ -71,9 +82,78 @@ while [ $# -gt 0 ]; do
     --peer-repeats) peer_repeats=$2; shift 2 ;;
     --peer-e2e-frames) peer_e2e_frames=$2; shift 2 ;;
     --peer-e2e-frames-big) peer_e2e_frames_big=$2; shift 2 ;;
+    --scale)
+      scale="100 1000 10000"
+      if [ $# -gt 1 ] && [[ $2 =~ ^[0-9\ ]+$ ]]; then scale=$2; shift; fi
+      shift ;;
     *) echo "$usage" >&2; exit 2 ;;
   esac
 done
+
+# scale_bench: the --scale table (see above); prints it and exits.
+scale_bench() {
+  local bin=${SKINSLIDE:-}
+  if [ -z "$bin" ]; then
+    "$root/scripts/build.sh" --target skinslide >/dev/null
+    bin=${SKINSLIDE_BUILD_DIR:-$root/build}/skinslide
+  fi
+  local work elbow=$root/data/elbow
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  # wall_peak OUT ARGS...: "seconds peak_kb" of `skinslide ARGS` appended to OUT
+  wall_peak() {
+    local out=$1
+    shift
+    rm -rf "$work/out"
+    local t0=$EPOCHREALTIME
+    /usr/bin/time -f "%M" -o "$work/time" "$bin" -q -j 1 "$@" -o "$work/out" 2>"$work/log" ||
+      { echo "bench: skinslide $* failed: $(cat "$work/log")" >&2; exit 1; }
+    echo "$(awk -v a="$t0" -v b="$EPOCHREALTIME" 'BEGIN {printf "%.4f", b - a}') $(cat "$work/time")" >>"$out"
+  }
+  echo "| frames | source | start-up s (--no-slide --frames 1) | --frames 1 s (set-up, one frame slid) | per frame ms (all copied) | peak MB (all copied) |"
+  echo "|---|---|---|---|---|---|"
+  for n in $scale; do
+    mkdir -p "$work/f$n"
+    for k in $(seq "$n"); do
+      ln -s "$elbow/frames/elbow.000$(((k - 1) % 5 + 1)).obj" "$(printf '%s/f%d/elbow.%05d.obj' "$work" "$n" "$k")"
+    done
+    python3 - "$elbow/elbow.pc2" "$work/shot$n.pc2" "$n" <<'PY'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+head = list(struct.unpack("<12siiffi", data[:32]))
+size = head[2] * 12
+samples = [data[32 + k * size:32 + (k + 1) * size] for k in range(head[5])]
+n = int(sys.argv[3])
+head[5] = n
+with open(sys.argv[2], "wb") as f:
+    f.write(struct.pack("<12siiffi", *head))
+    for k in range(n):
+        f.write(samples[k % len(samples)])
+PY
+    local patch=(--patch "$elbow/patch.txt" "$elbow/bind.obj")
+    for source in obj pc2; do
+      local frames=("$work/f$n"/*.obj)
+      [ $source = pc2 ] && frames=("$work/shot$n.pc2")
+      : >"$work/start" && : >"$work/one" && : >"$work/all"
+      for r in $(seq "$runs"); do
+        wall_peak "$work/start" --no-slide --frames 1 "${patch[@]}" "${frames[@]}"
+        wall_peak "$work/one" --frames 1 "${patch[@]}" "${frames[@]}"
+        wall_peak "$work/all" --no-slide "${patch[@]}" "${frames[@]}"
+      done
+      echo "| $n | $source | $(awk '{print $1}' "$work/start" | median) |" \
+        "$(awk '{print $1}' "$work/one" | median) |" \
+        "$(awk -v n="$n" '{printf "%.3f\n", 1000 * $1 / n}' "$work/all" | median) |" \
+        "$(awk '{printf "%.1f\n", $2 / 1024}' "$work/all" | median) |"
+    done
+    rm -rf "$work/f$n" "$work/shot$n.pc2"
+  done
+  echo
+  echo "$(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+  exit 0
+}
+
+median() { sort -g | awk '{v[NR] = $1} END {if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+[ -z "$scale" ] || scale_bench
 
 "$root/scripts/build.sh" -DSKINSLIDE_BUILD_BENCH=ON >/dev/null
 build=${SKINSLIDE_BUILD_DIR:-$root/build}
@@ -102,7 +182,6 @@ if [ "$peers" = 1 ]; then
   fi
 fi
 
-median() { sort -g | awk '{v[NR] = $1} END {if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 
 # bench NAME BIND PATCH FRAME...: appends "key value" lines to $work/NAME.result
 bench() {

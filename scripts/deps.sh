@@ -17,6 +17,7 @@ else
     libstb-dev libgtest-dev libsuitesparse-dev
     python3-numpy python3-scipy
     pybind11-dev python3-dev python3-pytest
+    strace  # tests/cli/scale.sh counts a run's stat calls
   )
   # The Khronos glTF validator (scripts/gltf_validate.sh) runs on node; the tests skip it, saying
   # so, only where npm cannot reach its registry.

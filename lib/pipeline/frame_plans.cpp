@@ -4,10 +4,12 @@
 #include <filesystem>
 #include <optional>
 #include <set>
+#include <unordered_map>
 
 #include "core/error.h"
 #include "core/file_extension.h"
 #include "core/number_format.h"
+#include "io/file_key.h"
 #include "pipeline/cache_frames.h"
 
 namespace skinslide {
@@ -15,44 +17,52 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Same file (by identity when it exists, else by normalised path).
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+// Every file a run reads, by the file it is (io/file_key.h): no output may be one of them. Each
+// path is looked at once, so a plan of n frames is O(n).
+struct Inputs {
+  FileKeys keys;
+  std::unordered_map<FileKey, std::string, FileKeyHash> read;  // key -> the input's path
+};
+
+void add_input(Inputs& inputs, const std::string& path) {
+  inputs.read.emplace(inputs.keys.key(path, ErrorKind::Input), path);
 }
 
-// Every file a run reads: no output may be one of them.
-std::vector<std::string> run_inputs(const RunOptions& o) {
-  std::vector<std::string> inputs = o.frames;
-  inputs.push_back(o.bind);
-  inputs.insert(inputs.end(), o.patches.begin(), o.patches.end());
+Inputs run_inputs(const RunOptions& o) {
+  Inputs inputs;
+  for (const std::string& f : o.frames) add_input(inputs, f);
+  add_input(inputs, o.bind);
+  for (const std::string& p : o.patches) add_input(inputs, p);
   for (const std::string* f : {&o.weights, &o.pin})
-    if (!f->empty()) inputs.push_back(*f);
+    if (!f->empty()) add_input(inputs, *f);
   return inputs;
 }
 
-void refuse_overwrite(const std::string& target, const std::vector<std::string>& inputs) {
-  for (const std::string& in : inputs)
-    if (same_file(target, in))
-      throw Error(ErrorKind::Usage, "output " + target + " would overwrite input " + in +
-                                        "; choose another --output folder");
+// The input `target` would replace, if any.
+const std::string* input_at(Inputs& inputs, const std::string& target) {
+  const auto found = inputs.read.find(inputs.keys.key(target, ErrorKind::Output));
+  return found == inputs.read.end() ? nullptr : &found->second;
+}
+
+void refuse_overwrite(const std::string& target, Inputs& inputs) {
+  if (const std::string* in = input_at(inputs, target))
+    throw Error(ErrorKind::Usage, "output " + target + " would overwrite input " + *in +
+                                      "; choose another --output folder");
 }
 
 // A cache output and, for a chunk, the shot's cache its join makes in that folder
 // (`skinslide join`): neither may be an input, or the join would replace the shot it came from.
-void refuse_cache_overwrite(const std::string& cache, const std::string& joined,
-                            const std::vector<std::string>& inputs) {
+void refuse_cache_overwrite(const std::string& cache, const std::string& joined, Inputs& inputs) {
   refuse_overwrite(cache, inputs);
-  for (const std::string& in : inputs)
-    if (cache != joined && same_file(joined, in))
-      throw Error(ErrorKind::Usage, "output " + cache + ": its chunks would join into " + joined +
-                                        ", which is input " + in +
-                                        "; choose another --output folder");
+  if (cache == joined) return;
+  if (const std::string* in = input_at(inputs, joined))
+    throw Error(ErrorKind::Usage, "output " + cache + ": its chunks would join into " + joined +
+                                      ", which is input " + *in +
+                                      "; choose another --output folder");
 }
 
 // The report must overwrite neither an input nor an output.
-void refuse_report_overwrite(const RunOptions& o, const std::vector<std::string>& inputs,
+void refuse_report_overwrite(const RunOptions& o, Inputs& inputs,
                              const std::vector<std::string>& outputs) {
   if (o.report.empty()) return;
   std::error_code ec;
@@ -60,12 +70,28 @@ void refuse_report_overwrite(const RunOptions& o, const std::vector<std::string>
     throw Error(ErrorKind::Usage, "--report " + o.report +
                                       " is not a regular file (a device, a pipe or a socket), "
                                       "which writing the report would replace; name a file");
-  for (const std::string& in : inputs)
-    if (same_file(o.report, in))
-      throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + in);
-  for (const std::string& f : outputs)
-    if (same_file(o.report, f))
+  if (const std::string* in = input_at(inputs, o.report))
+    throw Error(ErrorKind::Usage, "--report " + o.report + " would overwrite input " + *in);
+  const FileKey report = inputs.keys.key(o.report, ErrorKind::Output);
+  const std::string* last = nullptr;  // a cache's outputs are one path, looked at once
+  for (const std::string& f : outputs) {
+    if (f.empty() || (last && f == *last)) continue;
+    last = &f;
+    if (inputs.keys.key(f, ErrorKind::Output) == report)
       throw Error(ErrorKind::Usage, "--report " + o.report + " is also the output of a frame");
+  }
+}
+
+// An -o named like a mesh (`-o shot.obj`) is taken for a file, but names the folder the frames
+// go to under their own names.
+void refuse_mesh_output(const RunOptions& o) {
+  const std::string ext = lower_extension(o.output);
+  if (ext == ".obj" || ext == ".gltf" || ext == ".glb")
+    throw Error(ErrorKind::Usage,
+                "-o " + o.output +
+                    ": -o is a folder, not a mesh file: the slid frames keep "
+                    "their own names in it (-o slid/); one file for a shot is a point cache (-o "
+                    "shot.pc2)");
 }
 
 // Indices of the frames that --frames selects, in list order, by the frame number in each
@@ -189,14 +215,21 @@ CacheTarget cache_target(const std::string& output, const std::string& stem,
   return {output, stem};
 }
 
+std::string cache_format_named_by(const std::string& output) {
+  const std::string ext = lower_extension(output);
+  if (fs::path(output).stem().empty()) return "";
+  return ext == ".pc2" ? "pc2" : ext == ".mdd" ? "mdd" : "";
+}
+
 std::vector<FrameRange> frame_ranges(const RunOptions& o) {
   return o.frame_ranges.empty() ? std::vector<FrameRange>{} : parse_frame_ranges(o.frame_ranges);
 }
 
 FramePlan plan_frames(const RunOptions& o) {
   refuse_bind_in_sequence(o);
+  refuse_mesh_output(o);
   const std::vector<FrameRange> ranges = frame_ranges(o);
-  const std::vector<std::string> inputs = run_inputs(o);
+  Inputs inputs = run_inputs(o);
   FramePlan plan;
   plan.folder = o.output;
   if (is_cache_format(o.format)) {
@@ -228,9 +261,11 @@ FramePlan plan_frames(const RunOptions& o) {
 }
 
 FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& names) {
+  refuse_mesh_output(o);
   const std::vector<FrameRange> ranges = frame_ranges(o);
-  std::vector<std::string> inputs = o.patches;
-  inputs.push_back(o.bind);
+  Inputs inputs;
+  add_input(inputs, o.bind);
+  for (const std::string& p : o.patches) add_input(inputs, p);
   const std::string format = o.format.empty() ? "glb" : o.format;
   FramePlan plan;
   plan.folder = o.output;
@@ -258,7 +293,8 @@ FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& n
 
 FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
                             const std::vector<std::string>& names) {
-  const std::vector<std::string> inputs = run_inputs(o);
+  refuse_mesh_output(o);
+  Inputs inputs = run_inputs(o);
   const std::string own = to_string(cache.format);
   const std::string format = o.format.empty() ? own : o.format;
   FramePlan plan;

@@ -42,10 +42,13 @@ CacheTarget cache_target(const std::string& output, const std::string& stem,
 /// frames' name without its number, `arm` for arm.0001.obj): PC2 frames are the files' numbers,
 /// which must rise by one step (startFrame the first, sampleRate the step; files without numbers
 /// count from 0); MDD times are those numbers over --fps. Reads no mesh; looks at the file
-/// system only to tell whether two paths are one file.
-/// \throw Error(Usage) for: a BIND named as a member of the FRAME sequence (frame_sequence: the
-///        bind forgotten, a frame taken for it) unless --bind-is-frame; a malformed --frames; two
-///        frames with one file name; an output that is an input (BIND, FRAME, --patch,
+/// system only to tell whether two paths are one file (io/file_key.h: a stat a path, O(n)).
+/// \throw Error(Input) "PATH: cannot read: REASON" for an input the system cannot look at (a
+///        folder on its way the user may not enter), Error(Output) "cannot write" for an output;
+///        Error(Usage) for: an --output named like a mesh file (`-o shot.obj`: it is a folder); a
+///        BIND named as a member of the FRAME sequence (frame_sequence: the bind forgotten, a frame
+///        taken for it) unless --bind-is-frame; a malformed --frames; two frames with one file
+///        name; an output that is an input (BIND, FRAME, --patch,
 ///        --weights, --pin); a --report that is an input or a frame's output; with --frames, a
 ///        frame without a number or a selection of none; for a cache: numbers that do not rise
 ///        by one step (PC2) or at all (MDD), some files numbered and some not, MDD without
@@ -56,20 +59,27 @@ FramePlan plan_frames(const RunOptions& options);
 /// (RigClip::names, "<character stem>.<frame>"), and those --frames selects by frame number;
 /// with a cache format, one cache of the chosen frames (OUTPUT/<character stem>.pc2, or a chunk
 /// named by its first and last frame: cache_frames.h cache_output_path).
-/// \throw Error(Usage) for: a malformed --frames; an output that is BIND or a --patch file; a
-///        --frames selecting none, or, for a cache, frames with gaps between them.
+/// \throw Error(Usage) for: an --output named like a mesh file; a malformed --frames; an output
+///        that is BIND or a --patch file; a --frames selecting none, or, for a cache, frames with
+///        gaps between them.
 FramePlan plan_rig_frames(const RunOptions& options, const std::vector<std::string>& names);
 
 /// The plan of a run whose FRAME is a point cache (`cache`, whose samples have the frame names
 /// `names`: cache_frames.h): the samples --frames selects by frame number, and either the cache
 /// they are written to (the FRAME's format: OUTPUT/<cache's file name>, or a chunk named by its
 /// first and last frame) or, with --format obj or glb, OUTPUT/<name>.<format> a sample.
-/// \throw Error(Usage) for: a malformed --frames or one selecting none; a cache chunk with gaps;
+/// \throw Error(Usage) for: an --output named like a mesh file; a malformed --frames or one
+///        selecting none; a cache chunk with gaps;
 ///        --format naming the other cache format; per-frame files for two samples of one frame;
 ///        an output or --report that is an input, or a chunk in the input's folder (the join
 ///        of the chunks would replace the input); a --report that is an output.
 FramePlan plan_cache_frames(const RunOptions& options, const CacheHeader& cache,
                             const std::vector<std::string>& names);
+
+/// The cache format an --output names by its extension ("pc2" for `shot.pc2`, "mdd"), else "":
+/// a run of FRAME files or of a clip given no --format writes that cache (README "Point
+/// caches"), as with --format.
+std::string cache_format_named_by(const std::string& output);
 
 /// The run's --frames, parsed; empty = every frame. \throw Error(Usage) when malformed.
 std::vector<FrameRange> frame_ranges(const RunOptions& options);

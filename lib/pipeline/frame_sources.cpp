@@ -61,7 +61,8 @@ FrameOutcome finish_frame(const BindSetup& setup, FrameResult& result, const std
                           const std::string& out_path, double read_seconds, double write_seconds,
                           ReportFrame* record) {
   FrameOutcome outcome{frame_lines(setup, result, label, out_path),
-                       first_unconverged(result).second.empty()};
+                       first_unconverged(result).second.empty(),
+                       window_costly(setup, result.patches)};
   if (record)
     record_frame(*record, label, out_path, read_seconds, write_seconds, std::move(result.patches));
   return outcome;

@@ -51,10 +51,12 @@ struct CacheSlot {
   std::size_t sample = 0;
 };
 
-/// What became of one frame: its log lines, and whether every patch's slide converged.
+/// What became of one frame: its log lines, whether every patch's slide converged, and whether
+/// its window cost it much energy.
 struct FrameOutcome {
   std::vector<LogLine> lines;
   bool converged = true;
+  bool window_costly = false;  ///< its --window mean costs ten points of energy (log_lines.h)
 };
 
 /// Frame i of the run: read (or posed), slid and written. With `record`, the report's record of

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <numeric>
 #include <utility>
 
@@ -22,7 +23,102 @@ WindowPlan plan_in_order(int reach, std::vector<std::size_t> order) {
   return plan;
 }
 
+// The file of `path`'s sequence numbered `number`, in `path`'s digits' width (arm.0100.obj for
+// arm.0101.obj and 100); none when the number is negative.
+std::optional<std::string> sequence_neighbour(const std::string& path, long long number) {
+  const std::optional<std::string> sequence = frame_sequence(path);
+  const std::optional<long long> own = frame_number(path);
+  if (!sequence || !own || number < 0) return std::nullopt;
+  const std::filesystem::path p(path);
+  const std::string stem = p.stem().string(), pattern = std::filesystem::path(*sequence).stem();
+  const std::size_t width = stem.size() + 1 - pattern.size();  // the digits `#` stands for
+  std::string digits = std::to_string(number);
+  if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
+  std::string name = pattern;
+  name.replace(name.find('#'), 1, digits);
+  return (p.parent_path() / (name + p.extension().string())).string();
+}
+
+// The given FRAME files' first and last, when a file of their sequence lies beside either on
+// disk: the warning, with the glob and --frames to pass instead.
+std::optional<LogLine> cut_short_line(const WindowPlan& plan,
+                                      const std::vector<std::size_t>& chosen,
+                                      const std::vector<std::string>& paths,
+                                      const std::string& frame_ranges) {
+  const std::string& first = paths[plan.order.front()];
+  const std::string& last = paths[plan.order.back()];
+  std::error_code ec;
+  const auto beside = [&](const std::string& path, long long step) -> std::optional<std::string> {
+    const std::optional<std::string> n = sequence_neighbour(path, *frame_number(path) + step);
+    if (n && std::filesystem::exists(*n, ec)) return n;
+    return std::nullopt;
+  };
+  const std::optional<std::string> before = beside(first, -1), after = beside(last, +1);
+  if (!before && !after) return std::nullopt;
+  std::string where;
+  if (before) where = "start at " + first + " with " + *before + " beside it";
+  if (after)
+    where += (before ? " and end at " : "end at ") + last + " with " + *after + " beside it";
+  long long low = *frame_number(paths[chosen.front()]), high = low;
+  for (std::size_t i : chosen) {
+    low = std::min(low, *frame_number(paths[i]));
+    high = std::max(high, *frame_number(paths[i]));
+  }
+  std::string glob = std::filesystem::path(first).parent_path().string();
+  glob += (glob.empty() ? "" : "/") + *frame_sequence(first);
+  glob.replace(glob.rfind('#'), 1, "*");
+  const std::string ranges =
+      frame_ranges.empty() ? std::to_string(low) + "-" + std::to_string(high) : frame_ranges;
+  return LogLine{LogLevel::Warning,
+                 "skinslide: warning: --window " + std::to_string(plan.reach) +
+                     ": the frames given " + where +
+                     ": the windows there are cut short where a run of the whole sequence has "
+                     "neighbours, so these frames are not what that run writes. Give the whole "
+                     "sequence and this chunk: --window " +
+                     std::to_string(plan.reach) + " --frames " + ranges + " " + glob};
+}
+
+// Chosen frames short of the given ends: the frames beside them their windows relax.
+std::optional<LogLine> chunk_line(const WindowPlan& plan, const std::vector<std::size_t>& chosen,
+                                  const std::vector<std::string>& labels) {
+  std::vector<char> is_chosen(plan.order.size(), 0);
+  for (std::size_t i : chosen) is_chosen[i] = 1;
+  std::vector<char> beside(plan.order.size(), 0);
+  std::size_t first = chosen.front(), last = chosen.front();
+  for (std::size_t i : chosen) {
+    if (plan.place[i] < plan.place[first]) first = i;
+    if (plan.place[i] > plan.place[last]) last = i;
+    for (const WindowWeight& m : window_of(plan, i))
+      if (!is_chosen[m.frame]) beside[m.frame] = 1;
+  }
+  const auto extra = static_cast<std::size_t>(std::count(beside.begin(), beside.end(), 1));
+  if (extra == 0) return std::nullopt;
+  return LogLine{
+      LogLevel::Info,
+      "skinslide: --window " + std::to_string(plan.reach) + ": " +
+          (chosen.size() == 1 ? "the frame chosen, " + labels[first] + ", is"
+                              : "the " + std::to_string(chosen.size()) + " frames chosen, " +
+                                    labels[first] + " to " + labels[last] + ", are") +
+          " a chunk of the " + std::to_string(plan.order.size()) +
+          " given: " + std::to_string(extra) +
+          " frames beside them are relaxed for their windows, not written, as one "
+          "run of the whole sequence does (a farm task is given the whole sequence "
+          "and its own --frames)"};
+}
+
 }  // namespace
+
+std::optional<LogLine> window_ends_line(const WindowPlan& plan,
+                                        const std::vector<std::size_t>& chosen,
+                                        const std::vector<std::string>& labels,
+                                        const std::vector<std::string>& paths,
+                                        const std::string& frame_ranges) {
+  if (plan.order.empty() || chosen.empty()) return std::nullopt;
+  if (!paths.empty())
+    if (std::optional<LogLine> line = cut_short_line(plan, chosen, paths, frame_ranges))
+      return line;
+  return chunk_line(plan, chosen, labels);
+}
 
 WindowPlan files_window_plan(int reach, const std::vector<std::string>& paths) {
   std::vector<long long> number(paths.size());

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/log_lines.h"
 #include "pipeline/slide_frame.h"
 
 namespace skinslide {
@@ -38,6 +39,21 @@ WindowPlan files_window_plan(int reach, const std::vector<std::string>& paths);
 
 /// The plan of `count` frames in their own order (a cache's samples, a clip's).
 WindowPlan ordered_window_plan(int reach, std::size_t count);
+
+/// What a windowed run tells once about its ends (README "Farm"), before its frames:
+///  - FRAME files (`paths`) given that stop short of their sequence on disk (the file numbered one
+///    before the first given, or one after the last, is beside it): a Warning, the first and last
+///    frames' windows cut short where a run of the whole sequence has neighbours, with what to pass
+///    instead (the whole sequence as a glob, this chunk as --frames);
+///  - else frames chosen (--frames) that start or end away from the ends of those given: an Info
+///    line, the frames beside the chunk relaxed for its windows and not written, as one run does.
+/// `labels` names each frame (a FRAME file, a cache's or clip's frame); `paths` is empty for a
+/// cache or a clip (nothing beside them on disk). None when neither holds.
+std::optional<LogLine> window_ends_line(const WindowPlan& plan,
+                                        const std::vector<std::size_t>& chosen,
+                                        const std::vector<std::string>& labels,
+                                        const std::vector<std::string>& paths,
+                                        const std::string& frame_ranges);
 
 /// One frame of a window: a frame index and its weight (the weights of a window sum to 1).
 struct WindowWeight {

@@ -1,6 +1,7 @@
 #include "pipeline/log_lines.h"
 
 #include <algorithm>
+#include <variant>
 
 #include "core/number_format.h"
 
@@ -9,7 +10,36 @@ namespace {
 
 constexpr const char* kAtRest = "at rest (the bind to float32 precision), unchanged";
 
+// The share of a frame's energy its window's mean may keep above its own slide before the frame
+// counts as costly: the ten points its line tells (elastic_method.cpp kWindowCostTold; the tests
+// hold the two to one threshold).
+constexpr double kWindowCostCounted = 0.1;
+
+// A frame's line has figures when some patch slides and not every one is at rest.
+bool has_figures(const BindSetup& setup, const std::vector<PatchFrameReport>& patches) {
+  bool any_free = false, all_at_rest = true;
+  for (size_t p = 0; p < setup.patches.size(); ++p)
+    if (!setup.patches[p].skipped) {
+      any_free = true;
+      all_at_rest = all_at_rest && patches[p].at_rest;
+    }
+  return any_free && !all_at_rest;
+}
+
 }  // namespace
+
+bool window_costly(const BindSetup& setup, const std::vector<PatchFrameReport>& patches) {
+  if (patches.size() != setup.patches.size() || !has_figures(setup, patches)) return false;
+  double before = 0, after = 0, own = 0;
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const auto* r = std::get_if<ElasticReport>(&patches[p].method);
+    if (!r || setup.patches[p].skipped) continue;
+    before += r->energy_before;
+    after += r->energy_after;
+    own += r->energy_own;
+  }
+  return before > 0 && after - own > kWindowCostCounted * before;
+}
 
 std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& result,
                                  const std::string& frame_path, const std::string& out_path) {
@@ -18,16 +48,13 @@ std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& resu
   const auto report = [&](size_t p) -> const MethodReport& { return result.patches[p].method; };
   // Figures where there is something to slide: a frame of skipped patches has no energy, and a
   // frame at rest comes back unchanged whatever is left of its float32 rounding.
-  bool any_free = false, all_at_rest = true;
-  for (size_t p = 0; p < setup.patches.size(); ++p)
-    if (!setup.patches[p].skipped) {
-      any_free = true;
-      all_at_rest = all_at_rest && result.patches[p].at_rest;
-    }
-  const std::string summary = !any_free     ? "no free vertex: nothing slides"
-                              : all_at_rest ? std::string(kAtRest)
-                                            : frame_summary(setup.method, setup.patches, report,
-                                                            ", max slide " + log_number(max_slide));
+  bool any_free = false;
+  for (const Patch& p : setup.patches) any_free = any_free || !p.skipped;
+  const std::string summary = !any_free ? "no free vertex: nothing slides"
+                              : !has_figures(setup, result.patches)
+                                  ? std::string(kAtRest)
+                                  : frame_summary(setup.method, setup.patches, report,
+                                                  ", max slide " + log_number(max_slide));
   std::vector<LogLine> lines;
   lines.push_back({LogLevel::Info, "skinslide: " + frame_path + ": " +
                                        std::to_string(setup.patches.size()) + " patches, " +

@@ -10,6 +10,7 @@
 #include "io/atomic_write.h"
 #include "core/json_text.h"
 #include "core/number_format.h"
+#include "pipeline/log_lines.h"
 
 namespace skinslide {
 namespace {
@@ -169,6 +170,11 @@ std::string report_json(const BindSetup& setup, const RunReport& run) {
   totals.add("frames", number(static_cast<long long>(run.frames.size())))
       .add("moved", number(sums.moved));
   add(totals, total_figures(sums.totals)).add("max_slide", number(sums.max_slide));
+  if (run.window > 0) {  // frames whose window's mean costs them ten points (log_lines.h)
+    long long costly = 0;
+    for (const ReportFrame& f : run.frames) costly += window_costly(setup, f.patches) ? 1 : 0;
+    totals.add("window_costly", number(costly));
+  }
   root.add("totals", totals.str());
   if (run.timings) root.add("timings", timings_json(run, sums));
   return root.str() + "\n";

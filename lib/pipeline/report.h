@@ -46,7 +46,8 @@ struct RunReport {
 ///   vertices, free, pinned, loops, outer_loop_start, outer_loop_chosen, skipped and the method's
 ///   figures, in the order patch_figures gives them], "frames": [{path, output, patches: [{the
 ///   method's figures (report_figures), moved, max_slide, mean_slide, spread_frame,
-///   spread_slid}]}], "totals": {frames, moved, the method's sums (total_figures), max_slide},
+///   spread_slid}]}], "totals": {frames, moved, the method's sums (total_figures), max_slide, with
+///   --window window_costly (frames whose window's mean costs them ten points: log_lines.h)},
 ///   "timings": {seconds per stage summed over frames: bind_setup, read, solve, locate, transfer,
 ///   write; wall} }
 /// Skipped patches report zeros. Vertex ids are mesh ids.

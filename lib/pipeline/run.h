@@ -38,6 +38,9 @@ struct RunResult {
   std::size_t frames = 0;         ///< frames --frames selected (written + failed)
   std::vector<Error> failures;    ///< keep_going: each failed frame's error (logged), frame order
   std::size_t not_converged = 0;  ///< frames written with a patch that did not converge
+  /// Frames written whose --window mean costs them ten points of energy or more (their lines say
+  /// "X% without the window": log_lines.h window_costly).
+  std::size_t window_costly = 0;
 };
 
 /// Runs it all: plans the outputs (plan_frames / plan_rig_frames), reads the bind and the patch
@@ -45,6 +48,8 @@ struct RunResult {
 /// (or poses), slides and writes the chosen frames on `threads` threads, each frame's dumps and
 /// previews before its slid file; syncs the folders and writes the report. The outputs depend
 /// on the inputs and options only, never on `threads` or the frames' order of completion.
+/// An --output named like a cache (`shot.pc2`) with no --format is --format pc2 (FRAME files, a
+/// clip; cache_format_named_by).
 /// \throw Error: Usage for the plan's refusals and bad controls, Input for unreadable or
 ///        malformed inputs, Output when a folder or the report cannot be written; without
 ///        keep_going, the first failed frame's error (in frame order), after the frames started

@@ -35,11 +35,11 @@ check "a rig frame's dumps and preview are named after its output" \
     -f "$tmp/rs.dump/bind.patch000.id.exr" -a -f "$tmp/rs.prev/RiggedSimple.0049.patch000.png" ]
 check "dumps change nothing in the slid frames" diff -r "$tmp/rs.t1" "$tmp/rs.dumped"
 check "--fps 12 --format obj runs" \
-  "$bin" -q --fps 12 --format obj --patch "$patch" --animation 0 "$simple" -o "$tmp/rs.obj"
-check "--fps 12 samples 2.04 s into 25 OBJ frames" [ "$(ls "$tmp/rs.obj"/*.obj | wc -l)" -eq 25 ]
+  "$bin" -q --fps 12 --format obj --patch "$patch" --animation 0 "$simple" -o "$tmp/rs_obj"
+check "--fps 12 samples 2.04 s into 25 OBJ frames" [ "$(ls "$tmp/rs_obj"/*.obj | wc -l)" -eq 25 ]
 check "the OBJ frames have the welded mesh: 96 v and 188 f lines" \
-  [ "$(grep -c '^v ' "$tmp/rs.obj/RiggedSimple.0012.obj")" -eq 96 -a \
-    "$(grep -c '^f ' "$tmp/rs.obj/RiggedSimple.0012.obj")" -eq 188 ]
+  [ "$(grep -c '^v ' "$tmp/rs_obj/RiggedSimple.0012.obj")" -eq 96 -a \
+    "$(grep -c '^f ' "$tmp/rs_obj/RiggedSimple.0012.obj")" -eq 188 ]
 
 # glTF BIND and FRAME files (and OBJ mixed with glTF) through io/mesh_file.cpp's dispatcher.
 "$bin" -q --patch "$patch" "$simple" "$tmp/rs.t1/RiggedSimple.0010.glb" "$tmp/rs.t1/RiggedSimple.0024.glb" \
@@ -52,9 +52,9 @@ else
   check "each glTF frame gives a GLB of the same name" \
     [ -f "$tmp/files/RiggedSimple.0010.glb" -a -f "$tmp/files/RiggedSimple.0024.glb" ]
   check "an OBJ bind with a glTF frame runs" \
-    "$bin" -q --patch "$patch" "$tmp/rs.obj/RiggedSimple.0000.obj" "$tmp/rs.t1/RiggedSimple.0024.glb" -o "$tmp/mixed"
+    "$bin" -q --patch "$patch" "$tmp/rs_obj/RiggedSimple.0000.obj" "$tmp/rs.t1/RiggedSimple.0024.glb" -o "$tmp/mixed"
   check "a glTF bind with an OBJ frame runs" \
-    "$bin" -q --patch "$patch" "$simple" "$tmp/rs.obj/RiggedSimple.0012.obj" -o "$tmp/mixed2"
+    "$bin" -q --patch "$patch" "$simple" "$tmp/rs_obj/RiggedSimple.0012.obj" -o "$tmp/mixed2"
   check "--mesh picks the mesh by index" \
     "$bin" -q --mesh 0 --patch "$patch" "$simple" "$tmp/rs.t1/RiggedSimple.0010.glb" -o "$tmp/files.m0"
   check "--mesh 0 gives the same bytes" \

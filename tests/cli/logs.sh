@@ -51,4 +51,27 @@ echo 0 >"$tmp/one_face.txt"
 check "a patch with no free vertex: no energy figure" bash -c "! grep -q 'energy' '$tmp/none.txt'"
 check "... but what happened" grep -qF 'elbow.0004.obj: 1 patches, no free vertex: nothing slides' "$tmp/none.txt"
 
+# --- --window: a run's ends and a window's cost -------------------------------------------------
+win=(--patch data/elbow/patch.txt data/elbow/bind.obj)
+"$bin" -q -j 1 --window 1 "${win[@]}" data/elbow/frames/elbow.000[234].obj -o "$tmp/cut" 2>"$tmp/cut.txt"
+check "--window, frames 2-4 of 1-5 given: a warning, even with -q, with what to pass instead" grep -qF \
+  "skinslide: warning: --window 1: the frames given start at data/elbow/frames/elbow.0002.obj with data/elbow/frames/elbow.0001.obj beside it and end at data/elbow/frames/elbow.0004.obj with data/elbow/frames/elbow.0005.obj beside it: the windows there are cut short where a run of the whole sequence has neighbours, so these frames are not what that run writes. Give the whole sequence and this chunk: --window 1 --frames 2-4 data/elbow/frames/elbow.*.obj" "$tmp/cut.txt"
+check "... once" [ "$(grep -c 'window' "$tmp/cut.txt")" -eq 1 ]
+"$bin" -j 1 --window 1 --frames 2-3 "${win[@]}" data/elbow/frames/*.obj -o "$tmp/chunk" 2>"$tmp/chunk.txt"
+check "--window, --frames 2-3 of the 5 given: the chunk's neighbours told, once" bash -c \
+  "[ \$(grep -c 'are a chunk of the 5 given: 2 frames beside them are relaxed for their windows, not written' '$tmp/chunk.txt') -eq 1 ]"
+"$bin" -j 1 --window 1 "${win[@]}" data/elbow/frames/*.obj -o "$tmp/whole" 2>"$tmp/whole.txt"
+check "--window, the whole sequence: nothing said of its ends" bash -c "! grep -qE 'chunk|warning' '$tmp/whole.txt'"
+"$bin" -j 1 --window 4 --window-ends cycle "${win[@]}" data/elbow/frames/*.obj -o "$tmp/costly" \
+  --report "$tmp/costly.json" 2>"$tmp/costly.txt"
+check "frames whose window costs ten points: counted on the summary line, with what to do" grep -qF \
+  "5 frames slid (2 whose --window mean costs ten points of energy or more, 'X% without the window' on their lines: try a smaller --window, --window-ends one-sided if the shot is not a loop, or no window for separate poses)" "$tmp/costly.txt"
+check "... as many as the lines that say so" [ "$(grep -c 'without the window (its frames' "$tmp/costly.txt")" -eq 2 ]
+check "... and in the report's totals" $py - "$tmp/costly.json" <<'PY'
+import json, sys
+assert json.load(open(sys.argv[1]))["totals"]["window_costly"] == 2
+PY
+"$bin" -j 1 "${win[@]}" data/elbow/frames/*.obj -o "$tmp/nowin" --report "$tmp/nowin.json" 2>/dev/null
+check "... a report without a window has no such key" bash -c "! grep -q window_costly '$tmp/nowin.json'"
+
 finish logs

@@ -217,6 +217,28 @@ TEST(FrameWindow, AMeanThatCostsTheFrameMuchEnergyIsToldOnItsLine) {
   EXPECT_EQ(line(0.2).find("without the window"), std::string::npos) << "no window, or no cost";
 }
 
+// The run counts a frame as costly (its summary, the report's window_costly) exactly when its
+// line tells the window's cost: one threshold for both.
+TEST(FrameWindow, AFrameIsCountedCostlyExactlyWhenItsLineSaysSo) {
+  const ElbowRun run;
+  ElasticReport report;
+  report.stop = "converged";
+  report.energy_before = 1;
+  report.energy_own = 0.2;
+  std::vector<PatchFrameReport> patches(run.setup.patches.size());
+  for (double written : {0.2, 0.29, 0.299, 0.301, 0.31, 0.5, 1.0}) {
+    report.energy_after = written;
+    for (PatchFrameReport& p : patches) p.method = report;
+    const std::string line = frame_summary(
+        run.setup.patches, [&](std::size_t) -> const ElasticReport& { return report; }, "");
+    EXPECT_EQ(window_costly(run.setup, patches),
+              line.find("without the window") != std::string::npos)
+        << written << ": " << line;
+  }
+  patches.front().at_rest = true;  // a frame at rest has no figures, so no such line
+  EXPECT_FALSE(window_costly(run.setup, patches));
+}
+
 // window_mean's inputs for data/elbow's frame 2: its patch positions, set-up and own relaxation.
 class WindowMeanOfFrame2 : public ::testing::Test {
  protected:

@@ -63,6 +63,38 @@ TEST(PlanFrames, RefusesAnOutputThatIsAnInput) {
             std::string::npos);
 }
 
+// Two paths that cannot be looked at are not one file (the overwrite check once compared their
+// two failed lookups, both empty): the first input on the way is named, "cannot read".
+TEST(PlanFrames, APathThatCannotBeLookedAtIsAnInputErrorNotAnOverwrite) {
+  const test::TempDir dir("plan_frames_loop");
+  fs::create_symlink(dir / "d", dir / "d");  // a loop of links: every lookup through it fails
+  RunOptions o = frames_run({dir / "d/frames/elbow.0002.obj"}, dir / "d/out");
+  o.bind = dir / "d/bind.obj";
+  o.patches = {dir / "d/patch.txt"};
+  try {
+    plan_frames(o);
+    ADD_FAILURE() << "planned";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_EQ(std::string(e.what()),
+              dir / "d/frames/elbow.0002.obj" + ": cannot read: Too many levels of symbolic links");
+  }
+}
+
+// -o names a folder: a mesh file's name is refused; a cache's name is the cache to write.
+TEST(PlanFrames, RefusesAnOutputNamedLikeAMesh) {
+  EXPECT_EQ(refusal(frames_run({"shot/f.0001.obj"}, "slid/shot.obj")),
+            "-o slid/shot.obj: -o is a folder, not a mesh file: the slid frames keep their own "
+            "names in it (-o slid/); one file for a shot is a point cache (-o shot.pc2)");
+  EXPECT_NE(refusal(frames_run({"shot/f.0001.obj"}, "shot.GLTF")).find("-o is a folder"),
+            std::string::npos);
+  EXPECT_EQ(refusal(frames_run({"shot/f.0001.obj"}, "slid.v2")), "");
+  EXPECT_EQ(cache_format_named_by("slid/shot.pc2"), "pc2");
+  EXPECT_EQ(cache_format_named_by("shot.MDD"), "mdd");
+  EXPECT_EQ(cache_format_named_by("slid"), "");
+  EXPECT_EQ(cache_format_named_by("slid/.pc2"), "");
+}
+
 TEST(PlanFrames, RefusesAReportThatIsAnInputOrAnOutput) {
   RunOptions o = frames_run({"shot/f.0001.obj"});
   o.report = "shot/bind.obj";
