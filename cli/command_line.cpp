@@ -159,15 +159,32 @@ CLI::Option* add_table_option(CLI::App& app, const Option<Options>& option, Opti
   return added->group(group);
 }
 
-// A method's options, from its table: each refused with the other method (check_options), but an
-// option the run also reads whatever the method (--lookup-size, for --dump).
+// --help's group of the solvers' internals (core/option.h Option::research; each documented in
+// lib/elastic/README.md and lib/paper/README.md).
+constexpr const char* kResearchGroup = "Research";
+
+// A method's options of one kind (its choices, or its internals: Option::research), from its
+// table: each refused with the other method (check_options), but an option the run also reads
+// whatever the method (--lookup-size, for --dump), and one that needs another's word without it.
 template <class Options>
-void add_method_options(CLI::App& app, Options& options, CliOptions& o, const char* group) {
+void add_method_options(CLI::App& app, Options& options, CliOptions& o, const char* group,
+                        bool research) {
   const std::string method = method_name(options);
   for (const Option<Options>& option : option_table<Options>()) {
+    if (option.research != research) continue;
     CLI::Option* added = add_table_option(app, option, options, o, group);
     if (!option.run_wide) o.method_only.push_back({added, method});
+    if (option.needs_option) o.needs.push_back({added, option.needs_option, option.needs_word});
   }
+}
+
+// The names of a table's options that are choices (not research), as "--a, --b".
+template <class Options>
+std::string choice_names() {
+  std::string out;
+  for (const Option<Options>& option : option_table<Options>())
+    if (!option.research) out += (out.empty() ? "--" : ", --") + option.name;
+  return out;
 }
 
 // The Method group in README's order: --method, the elastic options (--window last), the paper's.
@@ -177,18 +194,25 @@ void add_method(CLI::App& app, CliOptions& o) {
   // does not know the help's order).
   add_table_option(app, method_option(), o.run, o, method)
       ->description(
-          "elastic: the free vertices relax in a fixed chart of each patch towards the bind's "
-          "edge lengths, with fold-free, energy-decreasing steps (its options: from --" +
-          option_table<ElasticOptions>().front().name + " to --" + window_ends_option().name +
-          "); paper: Yang & Zhang's bar nets (its options: from --" +
-          option_table<PaperOptions>().front().name + " on)");
-  add_method_options(app, o.elastic, o, method);
+          "elastic: the free vertices slide in a fixed chart of each patch towards the bind's "
+          "edge lengths (its options: " +
+          choice_names<ElasticOptions>() + ", --" + window_option().name + ", --" +
+          window_ends_option().name +
+          "); paper: Yang & Zhang's bar nets, one linear solve a frame (its options: in "
+          "Research)");
+  add_method_options(app, o.elastic, o, method, false);
   // A run's option, not a frame's (pipeline/run_options.h window_option).
   CLI::Option* window = add_table_option(app, window_option(), o.run, o, method)->type_name("N");
   o.method_only.push_back({window, method_name(ElasticOptions{})});
   CLI::Option* ends = add_table_option(app, window_ends_option(), o.run, o, method);
   o.method_only.push_back({ends, method_name(ElasticOptions{})});
-  add_method_options(app, o.paper, o, method);
+  add_method_options(app, o.paper, o, method, false);
+}
+
+// The solvers' internals, last in --help: no choice a user makes.
+void add_research(CLI::App& app, CliOptions& o) {
+  add_method_options(app, o.elastic, o, kResearchGroup, true);
+  add_method_options(app, o.paper, o, kResearchGroup, true);
 }
 
 void add_run(CLI::App& app, CliOptions& o) {
@@ -319,6 +343,7 @@ void add_options(CLI::App& app, CliOptions& o) {
   add_method(app, o);
   add_run(app, o);
   add_controls(app, o);
+  add_research(app, o);
 }
 
 void parse(CLI::App& app, CliOptions& o, int argc, char** argv) {
@@ -349,6 +374,12 @@ void check_options(const CLI::App& app, CliOptions& o) {
     if (only != method && option->count() > 0)
       throw CLI::ValidationError(
           option->get_name(), "applies to --method " + only + " only, not to --method " + method);
+  for (const CliOptions::Needs& needs : o.needs)
+    if (needs.option->count() > 0 && o.words.at(needs.word_option) != needs.word)
+      throw CLI::ValidationError(needs.option->get_name(),
+                                 "applies to --" + needs.word_option + " " + needs.word +
+                                     " only, not to --" + needs.word_option + " " +
+                                     o.words.at(needs.word_option));
   const RunOptions& r = o.run;
   if (app.count("--" + window_ends_option().name) > 0 && r.window == 0)
     throw CLI::ValidationError("--" + window_ends_option().name,

@@ -26,6 +26,14 @@ struct CliOptions {
   std::map<std::string, std::string> words;
   /// Options one method alone takes, each with that method's name: refused with the other.
   std::vector<std::pair<CLI::Option*, std::string>> method_only;
+  /// Options that apply only when a word option has one word (core/option.h Option::needs_option):
+  /// the option, the word option's name and that word.
+  struct Needs {
+    CLI::Option* option;
+    std::string word_option;
+    std::string word;
+  };
+  std::vector<Needs> needs;
   RigOptions rig;          ///< --animation, --fps
   bool has_rig = false;    ///< --animation given: the frames are BIND posed by its skin
   bool keyframes = false;  ///< --keyframes: the default, spelled out

@@ -57,17 +57,17 @@ int run_and_print(const cli::CliOptions& o) {
   const RunResult result = skinslide::run(cli::run_options(o), events);
   const size_t failed = result.failures.size();
   std::string counts;
-  if (result.not_converged)
-    counts += " (" + std::to_string(result.not_converged) + " not converged)";
+  if (result.not_converged) counts += std::to_string(result.not_converged) + " not converged";
   // A window that costs frames much energy is told with what to do about it, once.
   if (result.window_costly)
-    counts += " (" + std::to_string(result.window_costly) +
+    counts += (counts.empty() ? "" : "; ") + std::to_string(result.window_costly) +
               " whose --window mean costs ten points of energy or more, 'X% without the window' on "
               "their lines: try a smaller --window" +
               (o.words.at(window_ends_option().name) == "cycle"
                    ? std::string(", --window-ends one-sided if the shot is not a loop")
                    : std::string(", --window-ends cycle for a loop")) +
-              ", or no window for separate poses)";
+              ", or no window for separate poses";
+  if (!counts.empty()) counts = " (" + counts + ")";
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
     std::fprintf(stderr, "skinslide: %zu frames %s%s%s in %.2f s -> %s\n", result.frames - failed,
                  o.run.no_slide ? "copied" : "slid", counts.c_str(),

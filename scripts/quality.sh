@@ -140,7 +140,7 @@ export QUALITY_REFERENCE=$REFDIR
 
 cases=ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
 cases+=,swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
-QUALITY_CONVERGED=${QUALITY_CONVERGED:---tolerance 1e-6 --max-iterations 1000 --rotation-fits 10}
+QUALITY_CONVERGED=${QUALITY_CONVERGED:---solver search --tolerance 1e-6 --max-iterations 1000 --rotation-fits 10}
 methods=unslid,paper,elastic,elastic-blend,elastic-smooth,elastic-window,corrective-smooth
 methods_given=0
 keep=
@@ -223,10 +223,10 @@ method_args() {
         paper) [[ $has_method == 1 ]] && margs=(--method paper); return 0 ;;
         elastic) [[ $has_elastic == 1 ]] || return 1; margs=(--method elastic); return 0 ;;
         elastic-blend)
-            [[ $has_blend == 1 ]] || return 1; margs=(--method elastic --blend 1); return 0 ;;
+            [[ $has_blend == 1 ]] || return 1; margs=(--method elastic --solver search --blend 1); return 0 ;;
         elastic-smooth)
             [[ $has_ease_in == 1 ]] || return 1
-            margs=(--method elastic --blend 1 --ease-in 1 --tolerance 1e-6 --max-iterations 30)
+            margs=(--method elastic --solver search --blend 1 --ease-in 1 --tolerance 1e-6 --max-iterations 30)
             return 0 ;;
         elastic-window)
             [[ $has_window == 1 ]] || return 1; margs=(--method elastic --window 4); return 0 ;;

@@ -70,9 +70,9 @@ set -Eeuo pipefail
 trap 'echo "stress.sh: failed (exit $?): $BASH_COMMAND" >&2' ERR
 
 # The reference's settings: the most thorough the binary has (the lead may change them).
-STRESS_REF_ARGS=${STRESS_REF_ARGS:---tolerance 0 --max-iterations 100 --rotation-fits 10}
+STRESS_REF_ARGS=${STRESS_REF_ARGS:---solver search --tolerance 0 --max-iterations 100 --rotation-fits 10}
 # ARAP's local/global rounds gain slowly where a patch bends freely: many short rounds.
-STRESS_REF_ROUNDS_ARGS=${STRESS_REF_ROUNDS_ARGS---tolerance 0 --max-iterations 3 --rotation-fits 300}
+STRESS_REF_ROUNDS_ARGS=${STRESS_REF_ROUNDS_ARGS---solver search --tolerance 0 --max-iterations 3 --rotation-fits 300}
 STRESS_PROTO_ARGS=${STRESS_PROTO_ARGS:---iters 20 --tol 1e-6}
 STRESS_PROTO_MAX_FREE=${STRESS_PROTO_MAX_FREE:-15000}
 STRESS_PROTO_TIMEOUT=${STRESS_PROTO_TIMEOUT:-1500}

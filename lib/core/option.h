@@ -86,6 +86,14 @@ struct Option {
   /// Also read by the run whatever the method (--lookup-size sizes the dumps' ID images too): the
   /// command line takes it with either method, where the API and Python refuse it with the other.
   bool run_wide = false;
+  /// A solver's internal, not a choice a user makes: --help lists it in its Research group, the
+  /// Blender add-on under Advanced (lib/*/README.md document each).
+  bool research = false;
+  /// Set: the option applies only when the word option `needs_option` of the same table is
+  /// `needs_word` (the elastic search's internals need --solver search); the command line refuses
+  /// it otherwise.
+  const char* needs_option = nullptr;
+  const char* needs_word = nullptr;
 };
 
 /// The options of one options struct, in the order --help, the report and Python list them.

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/number_format.h"
 #include "elastic/line_search.h"
+#include "elastic/smooth_map.h"
 #include "elastic/stationarity.h"
 #include "elastic/surface_map.h"
 
@@ -310,6 +311,31 @@ void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, Elastic
   }
 }
 
+// Rule 10's measure at a slid patch given as a result (the map's): every triangle's rotation fitted
+// there, the ARAP energy's own gradient. Past `short_of` the patch has not converged whatever the
+// curvature reads: the bind metric's reading is returned, a lower bound.
+double gain_left_at(const ElasticSetup& setup, const FrameSurface& surface, double s,
+                    const ElasticResult& result, double short_of) {
+  const ArapTriangles mesh = arap_triangles(setup);
+  SlideState state;
+  state.node_uv = setup.chart.uv;
+  state.x = surface.frame;
+  state.where = result.where;
+  state.on_node.resize(setup.movable.size());
+  for (size_t i = 0; i < setup.movable.size(); ++i) {
+    const Index v = setup.movable[i];
+    state.node_uv[v] = result.uv[i];
+    state.x[v] = result.position[i];
+    state.on_node[i] = result.uv[i] == setup.chart.uv[v];
+  }
+  const std::vector<Mat32> R = fitted_rotations(mesh, state.x, surface.normals);
+  Positions3 g;
+  held_rotation_energy(mesh, state.x, s, R, &g);
+  return stationarity(surface, setup.movable, state, g, setup.metric,
+                      CurvatureInputs{mesh, s, setup.movable_slot}, short_of)
+      .larger();
+}
+
 }  // namespace
 
 void check_elastic_options(const ElasticOptions& options) {
@@ -336,6 +362,8 @@ const char* stop_name(ElasticStop stop) {
       return "no descent";
     case ElasticStop::SolveFailed:
       return "solve failed";
+    case ElasticStop::Passes:
+      return "passes";
   }
   return "unknown";
 }
@@ -414,6 +442,19 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     throw Error(ErrorKind::Numeric, "the frame's elastic energy is not finite");
   if (result.energy_before <= kAtRest * setup.bind_area) {
     result.stop = ElasticStop::AtRest;
+    return result;
+  }
+  if (options.solver == ElasticSolver::Map) {
+    smooth_map(setup, surface, SmoothMapRun{options.passes}, result);
+    const double tolerance = options.convergence * result.energy_before;
+    result.gain_left = gain_left_at(setup, surface, s, result, tolerance);
+    result.stop = result.gain_left <= tolerance
+                      ? ElasticStop::Converged
+                      : ElasticStop::Passes;
+    for (Index i = 0; i < m; ++i)
+      if (!result.position[i].allFinite())
+        throw Error(ErrorKind::Numeric, "patch vertex " + std::to_string(setup.movable[i]) +
+                                            ": the slid position is not finite");
     return result;
   }
   Relaxation relaxation(setup, surface, s, result);

@@ -17,8 +17,19 @@
 
 namespace skinslide {
 
+/// How a frame's patch is slid (lib/elastic/README.md): a fixed map of the frame (smooth in time,
+/// the default) or a search for a minimum of its energy (separate poses).
+enum class ElasticSolver {
+  Map,     ///< smooth_map.h: a fixed number of continuous passes from the frame
+  Search,  ///< rounds of ARAP steps until a tolerance, with holds and a line search
+};
+
 /// When a frame's relaxation stops (README "Options").
 struct ElasticOptions {
+  ElasticSolver solver = ElasticSolver::Map;
+  /// The map's passes from the frame: more even the stretch further at a proportional cost
+  /// (lib/elastic/README.md "The quality dial").
+  int passes = 2;
   /// ARAP local/global rounds: each fits every triangle's rotation to the slid patch, then
   /// lowers the energy with them held. More rounds reach lower ARAP energies; fewer keep the
   /// slide smoother from frame to frame (lib/elastic/README.md "Choosing the defaults").
@@ -90,10 +101,11 @@ enum class ElasticStop {
   NoStep,          ///< no step along the last direction lowered the energy (folds, round-off)
   NoDescent,       ///< round-off ate the gain: the frame is returned
   SolveFailed,     ///< a step's direction was not finite: the round ended there
+  Passes,          ///< the map's passes ended with more gain left than `convergence`
 };
 
 /// The report's word for a stop: "at rest", "converged", "small gain", "limit", "no step",
-/// "no descent", "solve failed".
+/// "no descent", "solve failed", "passes".
 const char* stop_name(ElasticStop stop);
 
 /// One patch's slide in one frame.

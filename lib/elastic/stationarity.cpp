@@ -272,7 +272,8 @@ double curvature_gain(const SlideState& state, const FrameSurface& surface,
 
 FirstOrderGain stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
                             const SlideState& state, const Positions3& gradient,
-                            const ElasticMetric& metric, const CurvatureInputs& curvature) {
+                            const ElasticMetric& metric, const CurvatureInputs& curvature,
+                            double short_of) {
   const Index m = static_cast<Index>(movable.size());
   Positions3 rho(m);
   // The descents by coordinate, (x, y) then (z, 0): K x I3 solved as K on two 2-columns.
@@ -293,6 +294,7 @@ FirstOrderGain stationarity(const FrameSurface& surface, const std::vector<Index
     cholesky_solve(metric.factor, solved, work);
     for (Index i = 0; i < m; ++i) gain.bind_metric += 0.5 * (*b)[i].dot(solved[i]);
   }
+  if (gain.bind_metric > short_of) return gain;
   gain.curvature = curvature_gain(state, surface, movable, metric, curvature, rho);
   return gain;
 }

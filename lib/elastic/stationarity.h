@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/types.h"
@@ -45,9 +46,13 @@ struct FirstOrderGain {
 };
 
 /// \param gradient the energy's 3D gradient per patch vertex (local ids) at `state`.
+/// \param short_of a gain above which the patch is short of stationary whatever the curvature
+/// reads: once the bind's metric reads more, the curvature's estimate is not made (`curvature`
+/// stays 0; larger() is then a lower bound, and above `short_of` either way).
 FirstOrderGain stationarity(const FrameSurface& surface, const std::vector<Index>& movable,
                             const SlideState& state, const Positions3& gradient,
-                            const ElasticMetric& metric, const CurvatureInputs& curvature);
+                            const ElasticMetric& metric, const CurvatureInputs& curvature,
+                            double short_of = INFINITY);
 
 /// The steepest first-order descent of a point moving on the faceted surface from chart point
 /// `where` (at chart node `node` when >= 0) against the 3D gradient g: rate times unit direction,

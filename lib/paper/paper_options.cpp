@@ -28,13 +28,13 @@ const OptionTable<PaperOptions>& option_table<PaperOptions>() {
       {"density",
        "Paper: force density q of a bar of length L: paper = 1 - L/Lmax (floored), "
        "inverse|length = Lmin/L, uniform = 1",
-       word_option(&O::density, kDensity)},
+       word_option(&O::density, kDensity), /*run_wide=*/false, /*research=*/true},
       {"holes",
        "Paper: inner boundary loops in the bind net: free (the paper) or fill (a virtual centre "
        "node per hole)",
-       word_option(&O::holes, kHoles)},
+       word_option(&O::holes, kHoles), /*run_wide=*/false, /*research=*/true},
       {"q-floor", "Paper: smallest force density (densities paper, inverse)",
-       NumberOption<O, double>{&O::q_floor, 1e-12, 1.0}},
+       NumberOption<O, double>{&O::q_floor, 1e-12, 1.0}, /*run_wide=*/false, /*research=*/true},
       {"frame-solver",
        "Paper: how bind and frame nets are solved: cholesky (sparse factor, analysis reused by "
        "every frame), multigrid (conjugate gradient preconditioned by an aggregation multigrid; "
@@ -43,19 +43,21 @@ const OptionTable<PaperOptions>& option_table<PaperOptions>() {
            std::to_string(kMultigridFreeNodes) +
            " free vertices or more, else cholesky) or cg (frame nets by Jacobi-preconditioned CG; "
            "slow, for comparison). The nets agree within --cg-tolerance",
-       word_option(&O::frame_solver, kFrameSolver)},
+       word_option(&O::frame_solver, kFrameSolver), /*run_wide=*/false, /*research=*/true},
       {"cg-tolerance",
        "Paper: CG (multigrid, cg) stops at |r| <= tol |b|; every method keeps a frame's warm "
        "start that meets it",
-       NumberOption<O, double>{&O::cg_tolerance, 1e-16, 1e-2}},
+       NumberOption<O, double>{&O::cg_tolerance, 1e-16, 1e-2}, /*run_wide=*/false,
+       /*research=*/true},
       {"cg-max-iterations", "Paper: past this the frame net is solved directly (counted)",
-       NumberOption<O, int>{&O::cg_max_iterations, 1, 1000000}},
+       NumberOption<O, int>{&O::cg_max_iterations, 1, 1000000}, /*run_wide=*/false,
+       /*research=*/true},
       {"locate",
        "Paper: finding bind positions in frame nets: walk (from each vertex's own triangles) or "
        "image (a triangle-ID image, --lookup-size)",
-       word_option(&O::locate, kLocate)},
+       word_option(&O::locate, kLocate), /*run_wide=*/false, /*research=*/true},
       {"lookup-size", "Side of the triangle-ID images (--locate image, --dump), pixels",
-       NumberOption<O, int>{&O::lookup_size, 8, 16384}, /*run_wide=*/true},
+       NumberOption<O, int>{&O::lookup_size, 8, 16384}, /*run_wide=*/true, /*research=*/true},
   };
   return table;
 }

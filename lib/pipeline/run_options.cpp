@@ -23,9 +23,8 @@ const OptionTable<RunOptions>& option_table<RunOptions>() {
       {"strength", "Multiplies every slide weight; the product is clamped to [0,1]",
        NumberOption<O, double>{&O::strength, 0.0, 1e6}},
       {"method",
-       "elastic: the free vertices relax in a fixed chart of each patch towards the bind's edge "
-       "lengths, with fold-free, energy-decreasing steps; paper: Yang & Zhang's bar nets (the "
-       "options below --tolerance)",
+       "elastic: the free vertices slide in a fixed chart of each patch towards the bind's edge "
+       "lengths; paper: Yang & Zhang's bar nets, one linear solve a frame",
        method_words()},
   };
   return table;
@@ -41,9 +40,9 @@ const Option<RunOptions>& window_option() {
   static const Option<O> option = {
       "window",
       "Elastic: write each frame's slide as the mean of its own and its N neighbours' on each "
-      "side in the sequence given (frame numbers; in the chart, weights N+1-|k|): 2.9-13x less "
-      "jitter in slow motion with 4. A frame then depends on its neighbours: give a farm chunk "
-      "the whole sequence and its range with --frames",
+      "side in the sequence given (frame numbers; in the chart, weights N+1-|k|): smoother still "
+      "in slow motion. A frame then depends on its neighbours: give a farm chunk the whole "
+      "sequence and its range with --frames",
       NumberOption<O, int>{&O::window, 0, kMaxWindow}};
   return option;
 }

@@ -152,8 +152,10 @@ T take(py::dict& options, const char* key, T value) {
 // by their option's words (\throw Error(Usage) naming an unknown one).
 template <class Options>
 void take_options(py::dict& kwargs, Options& options) {
+  std::vector<const Option<Options>*> given;
   for (const Option<Options>& option : option_table<Options>()) {
     const std::string key = api_name(option.name);
+    if (kwargs.contains(key.c_str())) given.push_back(&option);
     std::visit(
         [&](const auto& value) {
           if constexpr (requires { value.member; })
@@ -162,6 +164,17 @@ void take_options(py::dict& kwargs, Options& options) {
             value.set(options, take(kwargs, key.c_str(), value.get(options)));
         },
         option.value);
+  }
+  // An option that needs another's word (the elastic search's internals: solver = 'search').
+  for (const Option<Options>* option : given) {
+    if (!option->needs_option) continue;
+    for (const Option<Options>& other : option_table<Options>())
+      if (other.name == option->needs_option) {
+        const std::string word = std::get<WordOption<Options>>(other.value).get(options);
+        if (word != option->needs_word)
+          usage(api_name(option->name) + " applies to " + api_name(other.name) + " '" +
+                option->needs_word + "' only, not to " + api_name(other.name) + " '" + word + "'");
+      }
   }
 }
 
@@ -206,6 +219,11 @@ py::dict option_spec(const Option<Options>& option, const std::string& method) {
   spec["name"] = api_name(option.name);
   spec["option"] = "--" + option.name;
   spec["method"] = method.empty() ? py::object(py::none()) : py::object(py::str(method));
+  spec["research"] = option.research;
+  // The word option and word this one needs ([name, word], the API's names), or None.
+  spec["needs"] = option.needs_option
+                      ? py::object(py::make_tuple(api_name(option.needs_option), option.needs_word))
+                      : py::object(py::none());
   std::visit(
       [&](const auto& value) {
         if constexpr (requires { value.member; }) {

@@ -726,7 +726,7 @@ expect config_report_no_timings_without_report 2 "no_timings.toml:2: key 'report
 # CLI11's ranges let NaN through; bands narrower than round-off read as converged: refused.
 expect option_nan 2 "--convergence: Value nan is not a number" --convergence nan --patch $P $B $F
 expect option_nan_blend 2 "--blend: Value NaN is not a number" --blend NaN --patch $P $B $F
-expect blend_below_round_off 2 "--blend 1e-100: bands this narrow are below round-off; use 0 (the facets) or 0.001 to 2" --blend 1e-100 --patch $P $B $F
+expect blend_below_round_off 2 "--blend 1e-100: bands this narrow are below round-off; use 0 (the facets) or 0.001 to 2" --solver search --blend 1e-100 --patch $P $B $F
 printf 'patch = ["all.txt"]\nmethod = "paper"\ndensity = "papr"\n' >"$tmp/word.toml"
 expect config_value_not_a_word 2 "--density: papr not in {paper,inverse,length,uniform}" --config "$tmp/word.toml" $B $F
 printf 'patch = ["all.txt"]\nmethod = "paper"\ntolerance = 0.1\n' >"$tmp/other.toml"

@@ -120,8 +120,17 @@ done
 check "--method paper --max-iterations 5 is refused (2)" refused_option --max-iterations "$tmp/m4" --method paper --max-iterations 5 "${e[@]}"
 check "--method paper --tolerance 1e-3 is refused (2)" refused_option --tolerance "$tmp/m5" --method paper --tolerance 1e-3 "${e[@]}"
 check "an unknown method is a usage error (2)" expect_exit 2 "$tmp/m6" --method bogus "${e[@]}"
-check "--method elastic --max-iterations 5 --tolerance 1e-3 runs" \
-  "$bin" -q --method elastic --max-iterations 5 --tolerance 1e-3 "${e[@]}" -o "$tmp/m7"
+check "--method elastic --solver search --max-iterations 5 --tolerance 1e-3 runs" \
+  "$bin" -q --method elastic --solver search --max-iterations 5 --tolerance 1e-3 "${e[@]}" -o "$tmp/m7"
+refused_with_map() {  # refused_with_map OPTION OUTDIR ARGS...: exit 2 naming OPTION, no output
+  local option=$1 out=$2
+  shift 2
+  expect_exit 2 "$out" "$@" && grep -qF -- "$option: applies to --solver search only" "$tmp/stderr" &&
+    no_files "$out" || { echo "stderr: $(cat "$tmp/stderr")" >&2; return 1; }
+}
+for o in "--rotation-fits 2" "--max-iterations 5" "--tolerance 1e-3" "--ease-in 1" "--blend 1"; do
+  check "$o with the default map is refused (2)" refused_with_map "${o%% *}" "$tmp/m8" $o "${e[@]}"
+done
 check "--method paper --density paper --corners runs" \
   "$bin" -q --method paper --density paper --corners 356,364,372,380 "${e[@]}" -o "$tmp/m8"
 

@@ -19,7 +19,7 @@ first=$SLURM_ARRAY_TASK_ID
 last=$((first + ${SLURM_ARRAY_TASK_STEP:-1} - 1))
 [ "$last" -le "$end" ] || last=$end
 extra=()
-[ "$first" = "$slow" ] && extra=(--rotation-fits 1000 --max-iterations 100000 --tolerance 0)
+[ "$first" = "$slow" ] && extra=(--solver search --rotation-fits 1000 --max-iterations 100000 --tolerance 0)
 "$SKINSLIDE" -q -j 1 "${extra[@]}" --frames "$first-$last" --patch "$shot/patch.txt" \
   -o "$out/pc2" "$shot/bind.obj" "$shot/shot.pc2"
 "$SKINSLIDE" -q -j 1 --frames "$first-$last" --patch "$shot/patch.txt" \

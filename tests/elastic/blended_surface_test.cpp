@@ -192,10 +192,11 @@ TEST(BlendedSurface, AwayFromItsBandsATriangleKeepsItsOwnPlane) {
 // The grid of relax_test, bent over a joint, relaxed on the blended surface.
 TEST(BlendedSurface, ASlideRelaxedOnItIsWrittenOnTheFramesFacets) {
   const PolyMesh mesh = test::quad_grid_with_holes(10, 10, {23, 24, 33, 34});
-  ElasticOptions options;
+  ElasticOptions options = test::search_options();
   options.blend = 1;
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{options});
-  const BindSetup facets = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
+  const BindSetup facets =
+      bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{test::search_options()});
   // relax_test's bend: the right half turned about the y axis, the skin over the joint stretched.
   Positions3 frame = mesh.positions;
   const double angle = 1.5, radius = 3.0;

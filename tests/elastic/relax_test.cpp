@@ -115,6 +115,7 @@ TEST(ElasticSlide, ABentGridSlidesOnItsSurfaceAndEvensTheStretch) {
 TEST(ElasticSlide, EasedTargetsKeepTheGuaranteesAndEvenTheStretch) {
   const PolyMesh mesh = bind_grid();
   ElasticOptions eased;
+  eased.solver = ElasticSolver::Search;
   eased.ease_in = 1;
   eased.blend = 1;
   eased.tolerance = 1e-6;
@@ -309,7 +310,7 @@ TEST(ElasticRelax, AFrameShortOfStationaryIsRelaxedAgainWithALargerBudget) {
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
   const ElasticSetup& e = *test::elastic(setup).patches[0];
   const Positions3 rough = on_a_ball(mesh, setup.patches[0], n, 0.4);
-  ElasticOptions lenient;
+  ElasticOptions lenient = test::search_options();
   lenient.convergence = 1.0;
   const ElasticResult first = relax_patch(e, rough, lenient);
   EXPECT_EQ(first.stop, ElasticStop::Converged);
@@ -317,7 +318,7 @@ TEST(ElasticRelax, AFrameShortOfStationaryIsRelaxedAgainWithALargerBudget) {
   EXPECT_LE(first.solver_iterations, 8 * first.solves);
   EXPECT_GT(first.solver_iterations, 7 * first.solves) << "the directions reach their budget";
 
-  ElasticOptions strict;
+  ElasticOptions strict = test::search_options();
   strict.convergence = 0.0;
   const ElasticResult escalated = relax_patch(e, rough, strict);
   EXPECT_NE(escalated.stop, ElasticStop::Converged);
@@ -343,7 +344,7 @@ TEST(ElasticRelax, ARoundAtItsStepLimitWithUnsolvedDirectionsIsRelaxedAgain) {
   const PolyMesh mesh = test::quad_grid(n, n);
   const BindSetup setup = bind_setup(mesh, {test::all_faces(mesh)}, SlideOptions{});
   const ElasticSetup& e = *test::elastic(setup).patches[0];
-  ElasticOptions capped;
+  ElasticOptions capped = test::search_options();
   capped.convergence = 0.0;
   capped.tolerance = 0.0;
   capped.max_iterations = 2;

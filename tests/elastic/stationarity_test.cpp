@@ -9,6 +9,8 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include "helpers/samples.h"
+
 #include "elastic/relax.h"
 
 namespace skinslide {
@@ -181,7 +183,7 @@ TEST(RelaxStop, ConvergedOnlyWhereTheMeasureSaysSo) {
   Positions3 frame = bind;
   for (Vec3& p : frame) p = Vec3(p.x() * (p.x() > 0 ? 1.6 : 1.0), p.y(), 0.3 * p.x() * p.x());
   for (const double convergence : {0.0, 1e-2, 1.0}) {
-    ElasticOptions options;
+    ElasticOptions options = test::search_options();
     options.convergence = convergence;
     const ElasticResult r = relax_patch(setup, frame, options);
     ASSERT_GT(r.energy_before, 0);
@@ -199,24 +201,24 @@ TEST(RelaxStop, ConvergedOnlyWhereTheMeasureSaysSo) {
   // there (300 fits of 3 steps): on this fan 0.91 of it; the bind's metric alone read 0.54 (it
   // takes a triangle that turns for one that stretches: 2-5x low where a patch bends freely).
   {
-    ElasticOptions further;
+    ElasticOptions further = test::search_options();
     further.rotation_fits = 300;
     further.max_iterations = 3;
     further.tolerance = 0;
-    const ElasticResult r = relax_patch(setup, frame, ElasticOptions{});
+    const ElasticResult r = relax_patch(setup, frame, test::search_options());
     const double reached = r.energy_after - relax_patch(setup, frame, further).energy_after;
     ASSERT_GT(reached, 1e-3 * r.energy_before);
     EXPECT_GT(r.gain_left, 0.75 * reached);
     EXPECT_LT(r.gain_left, 1.5 * reached);
   }
   // No step: the frame itself is measured, and it is not stationary.
-  ElasticOptions none;
+  ElasticOptions none = test::search_options();
   none.max_iterations = 0;
   const ElasticResult at_frame = relax_patch(setup, frame, none);
   EXPECT_EQ(at_frame.stop, ElasticStop::IterationLimit);
   EXPECT_GT(at_frame.gain_left, 0.05 * at_frame.energy_before);
   // One step only: the round ends at its limit, and says so.
-  ElasticOptions one;
+  ElasticOptions one = test::search_options();
   one.max_iterations = 1;
   one.rotation_fits = 1;
   one.convergence = 0;

@@ -16,6 +16,14 @@ struct Sample {
   std::vector<Positions3> frames;  ///< data/<name>/frames/*.obj in name order
 };
 
+/// The elastic method's search (--solver search) with its default options: the tests of its
+/// rounds, holds, escalation and blend.
+inline ElasticOptions search_options() {
+  ElasticOptions o;
+  o.solver = ElasticSolver::Search;
+  return o;
+}
+
 /// The paper's method with its default options.
 inline SlideOptions paper_options() { return PaperOptions{}; }
 

@@ -124,7 +124,8 @@ TEST(FrameWindow, TheStoreRelaxesEachFrameOnceWhateverTheThreadsAndKeepsItsError
 // The data/elbow sample relaxed in each frame, for the windowed slides below.
 struct ElbowRun {
   test::Sample sample = test::load_sample("elbow");
-  BindSetup setup = bind_setup(sample.bind, {sample.faces}, SlideOptions{});
+  // The search's relaxations: its slides differ most from frame to frame (the window's cases).
+  BindSetup setup = bind_setup(sample.bind, {sample.faces}, SlideOptions{test::search_options()});
   std::vector<FrameRelaxations> relaxed;
   ElbowRun() {
     for (const Positions3& f : sample.frames) relaxed.push_back(relax_frame(setup, f));

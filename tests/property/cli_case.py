@@ -134,6 +134,10 @@ def build(seed, meshes, ctx):
         fits = int(opts[opts.index("--rotation-fits") + 1]) if "--rotation-fits" in opts else 3
         if fits > 1 and rng.random() < 0.2:
             opts += ["--ease-in", str(rng.randrange(1, fits))]
+        if opts:  # the search's internals: --solver search (lib/elastic/README.md)
+            opts += ["--solver", "search"]
+        elif rng.random() < 0.3:
+            opts += ["--passes", str(rng.choice([1, 2, 3, 8]))]
     else:
         if rng.random() < 0.3:
             opts += ["--density", rng.choice(["paper", "inverse", "length", "uniform"])]

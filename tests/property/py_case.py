@@ -23,7 +23,8 @@ PY_OPTIONS = {"--rotation-fits": ("rotation_fits", int), "--max-iterations": ("m
               "--frame-solver": ("frame_solver", str), "--cg-tolerance": ("cg_tolerance", float),
               "--cg-max-iterations": ("cg_max_iterations", int), "--locate": ("locate", str),
               "--lookup-size": ("lookup_size", int), "--blend": ("blend", float),
-              "--ease-in": ("ease_in", int)}
+              "--ease-in": ("ease_in", int), "--solver": ("solver", str),
+              "--passes": ("passes", int)}
 
 
 _read = {}

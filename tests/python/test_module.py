@@ -122,7 +122,7 @@ def test_a_sequence_is_refused_with_its_fault_named():
         elastic.slide_sequence([pose], window=window["max"] + 1)
     assert window | {"help": ""} == {
         "name": "window", "option": "--window", "method": "elastic", "type": "int", "default": 0,
-        "min": 0, "max": 100, "help": ""}
+        "min": 0, "max": 100, "help": "", "research": False, "needs": None}
     assert (ends["name"], ends["default"], ends["choices"]) == \
         ("window_ends", "one-sided", ["one-sided", "cycle"])
     with pytest.raises(skinslide.UsageError, match="unknown window end 'loop' .one-sided, cycle."):
@@ -173,7 +173,7 @@ def test_reports_carry_each_methods_figures():
     elastic = slider_from_files(bind, patch)
     _, report = elastic.slide(frame, edge_spread=True)
     figures = report["patches"][0]
-    assert figures["stop"] in ("converged", "small gain", "limit", "no step", "at rest",
+    assert figures["stop"] in ("converged", "passes", "small gain", "limit", "no step", "at rest",
                                "no descent")
     # converged only where the first-order measure says so (lib/elastic/README.md rule 10)
     assert figures["converged"] == (figures["first_order_share"] <= elastic.options["convergence"])
@@ -210,7 +210,8 @@ def test_errors_raise_with_their_kinds(tmp_path):
         (lambda: make(method="sideways"), skinslide.UsageError, "unknown method"),
         (lambda: make(tolerance=2.0), skinslide.UsageError, "tolerance"),
         (lambda: make(convergence=float("nan")), skinslide.UsageError, "convergence"),
-        (lambda: make(blend=1e-9), skinslide.UsageError, "below round-off"),
+        (lambda: make(solver="search", blend=1e-9), skinslide.UsageError, "below round-off"),
+            (lambda: make(blend=1), skinslide.UsageError, "blend applies to solver 'search' only"),
         (lambda: make(frobnicate=1), skinslide.UsageError, "unknown option frobnicate"),
         # A misspelt keyword: the nearest one named, as the command line does (--pach).
         (lambda: make(rotation_fit=2), skinslide.UsageError,
@@ -279,6 +280,8 @@ def test_option_specs_declare_what_the_slider_takes():
         # The ends of the range are taken; past them the Slider refuses, naming the option.
         # (--ease-in counts among the rotation fits: its largest needs the most fits.)
         fits = {"rotation_fits": 1000} if spec["name"] == "ease_in" else {}
+        if spec["needs"]:  # the search's internals need solver = 'search'
+            fits[spec["needs"][0]] = spec["needs"][1]
         for end, past in ((spec["min"], spec["min"] - 1), (spec["max"], spec["max"] * 2)):
             skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes,
                              method=spec["method"], **fits, **{spec["name"]: end})
@@ -286,7 +289,10 @@ def test_option_specs_declare_what_the_slider_takes():
                 skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes,
                                  method=spec["method"], **fits, **{spec["name"]: past})
     with pytest.raises(skinslide.UsageError, match="--ease-in 3 leaves no rotation fit"):
-        skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes, ease_in=3)
+        skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes, solver="search",
+                         ease_in=3)
+    with pytest.raises(skinslide.UsageError, match="ease_in applies to solver 'search' only"):
+        skinslide.Slider(positions, face_vertices, patch, face_sizes=face_sizes, ease_in=1)
 
 
 def test_a_cache_written_by_the_module_is_the_commands(cli, tmp_path):
