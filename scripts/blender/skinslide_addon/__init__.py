@@ -366,13 +366,13 @@ def draw_live(layout, obj, s, scene):
     stats = live.STATS.get(obj.name) if s.live_preview else None
     if stats:
         frame = live.frame_ms(scene)
-        text = (f"{stats['total_ms']:.1f} ms an update (slide {stats['slide_ms']:.1f} ms, "
-                f"Blender {stats['evaluate_ms'] + stats['write_ms']:.1f} ms)")
         if stats["total_ms"] > frame:
-            col.label(text=f"Slower than the frame rate: {text}; a frame lasts {frame:.1f} ms",
-                      icon="ERROR")
+            col.label(text=f"Slower than the frame rate: {stats['total_ms']:.1f} ms an update, "
+                           f"{frame:.1f} ms a frame", icon="ERROR")
         else:
-            col.label(text=text, icon="TIME")
+            col.label(text=f"{stats['total_ms']:.1f} ms an update", icon="TIME")
+        col.label(text=f"slide {stats['slide_ms']:.1f} ms, "
+                       f"Blender {stats['evaluate_ms'] + stats['write_ms']:.1f} ms")
     if s.live_preview and s.method == "elastic" and s.window > 0:
         col.label(text="The preview slides each frame alone: a windowed bake can differ",
                   icon="INFO")
