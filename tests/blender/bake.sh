@@ -29,4 +29,9 @@ blender -b --factory-startup -noaudio --python-exit-code 1 --python "$here/$scri
 status=$?
 grep -E "${script%.py}|Error|error|Traceback" "$work/log" | grep -v "^$" | head -40
 if [ $status -ne 0 ]; then tail -n 30 "$work/log"; fi
+# Blender's own count of memory left allocated at its exit: data the add-on left half-removed.
+if [ $status -eq 0 ] && grep -q "Not freed memory blocks" "$work/log"; then
+  echo "${script%.py}: Blender reports memory left allocated at its exit" >&2
+  status=1
+fi
 exit $status

@@ -7,10 +7,12 @@ The bake test's grid (armature bend, shape key bulge, pins, weights). With the p
 every frame the copy '<grid> live' holds the command line's slide of the same evaluated frame
 rounded to float32, exactly, and the same bits as the add-on's baked PC2 (and the viewport's
 depsgraph holds them after the frame change). An edit of the weight
-group shows on the next frame, a new strength at once; turned off, the copy is gone and the grid
+group shows on the next frame, a new strength and a selection in Edit Mode at once; the panel
+says when an update is slower than a frame; turned off, the copy is gone and the grid
 deforms and draws as before. Errors stop the preview and are named on the panel (live_error):
 an empty patch, a selection the library refuses (stray faces making a bow-tie), a weight group
-deleted, the mesh edited to another vertex count. Prints the time of each update.
+deleted, the mesh edited to another vertex count. The add-on disabled with the preview on
+leaves nothing behind. Prints the time of each update.
 
 Blender runs the depsgraph update handlers when it evaluates the scene after an edit (the
 viewport's redraw); headless, view_layer.update() stands for that redraw.
@@ -116,6 +118,45 @@ def check_edits(grid, copy):
     print(f"live_test: a new strength shows at once; update {timing(grid)}")
 
 
+def check_edit_mode(grid, copy):
+    """In Edit Mode the preview follows the selection as it is clicked (the edit mesh's), on
+    what Blender evaluates there: the armature shown in Edit Mode."""
+    grid.modifiers["armature"].show_in_editmode = True
+    bpy.context.scene.frame_set(FRAMES[2])
+    bpy.ops.object.mode_set(mode="EDIT")
+    before = preview_positions(copy)
+    edit_mesh = bmesh.from_edit_mesh(grid.data)
+    for f in edit_mesh.faces:
+        f.select = f.index >= 48
+    bmesh.update_edit_mesh(grid.data)
+    bpy.context.view_layer.update()  # the redraw after a click
+    got = preview_positions(copy)
+    expected = command(grid, "live_edit_mode", frames=[FRAMES[2]])
+    assert_equal(got, expected[FRAMES[2]], "a selection in Edit Mode")
+    assert not np.array_equal(got, before), "the selection changed nothing"
+    bpy.ops.object.mode_set(mode="OBJECT")
+    grid.modifiers["armature"].show_in_editmode = False
+    print(f"live_test: a selection in Edit Mode shows at once; update {timing(grid)}")
+
+
+def check_panel_lines(grid):
+    """The panel's lines: the time, or that the update is slower than a frame; the window."""
+    s = grid.skinslide
+    stats = {"total_ms": 50.0, "slide_ms": 45.0, "evaluate_ms": 1.5, "write_ms": 0.5}
+    slow = skinslide_addon.live_lines(s, stats, 1000 / 24)
+    assert slow[0] == ("Slower than the frame rate: 50.0 ms an update, 41.7 ms a frame",
+                       "ERROR"), slow
+    assert slow[1] == ("slide 45.0 ms, Blender 2.0 ms", "NONE"), slow
+    assert skinslide_addon.live_lines(s, stats, 1000 / 12)[0] == ("50.0 ms an update", "TIME")
+    s.window = 2
+    assert "a windowed bake can differ" in skinslide_addon.live_lines(s, stats, 100)[-1][0]
+    s.window = 0
+    internals = {"name": "tolerance", "method": "elastic"}
+    assert skinslide_addon.is_research(internals)  # a module without the "research" key
+    assert not skinslide_addon.is_research({**internals, "research": False})
+    assert not skinslide_addon.is_research({"name": "strength", "method": None})
+
+
 def check_off(grid, own, display):
     s = grid.skinslide
     s.live_preview = False
@@ -202,7 +243,14 @@ display = grid.display_type
 own = {frame: scene.played_back(grid, frame) for frame in FRAMES}
 copy = check_preview(grid)
 check_edits(grid, copy)
+check_edit_mode(grid, copy)
+check_panel_lines(grid)
 grid.skinslide.strength = 0.9
 check_off(grid, own, display)
 check_errors(grid, display)
+# Disabled with the preview on, the add-on leaves no copy and no handler behind.
+grid.skinslide.live_preview = True
+skinslide_addon.unregister()
+assert grid.name + live.LIVE_SUFFIX not in bpy.data.objects and grid.display_type == display
+assert live.on_frame_change not in bpy.app.handlers.frame_change_post
 print("live_test: passed")

@@ -363,21 +363,26 @@ def draw_live(layout, obj, s, scene):
     """The preview's toggle, its last update's time (or why it is slow), its error."""
     col = layout.column()
     col.prop(s, "live_preview", icon="PLAY" if not s.live_preview else "PAUSE")
-    stats = live.STATS.get(obj.name) if s.live_preview else None
-    if stats:
-        frame = live.frame_ms(scene)
-        if stats["total_ms"] > frame:
-            col.label(text=f"Slower than the frame rate: {stats['total_ms']:.1f} ms an update, "
-                           f"{frame:.1f} ms a frame", icon="ERROR")
-        else:
-            col.label(text=f"{stats['total_ms']:.1f} ms an update", icon="TIME")
-        col.label(text=f"slide {stats['slide_ms']:.1f} ms, "
-                       f"Blender {stats['evaluate_ms'] + stats['write_ms']:.1f} ms")
+    for text, icon in live_lines(s, live.STATS.get(obj.name), live.frame_ms(scene)):
+        col.label(text=text, icon=icon)
+
+
+def live_lines(s, stats, frame_ms):
+    """What the panel says of the preview, (text, icon) a line: the last update's time, or that
+    it is slower than the frame rate; its split; that a windowed bake can differ; the error."""
+    lines = []
+    if s.live_preview and stats:
+        total = stats["total_ms"]
+        lines.append((f"Slower than the frame rate: {total:.1f} ms an update, {frame_ms:.1f} ms "
+                      f"a frame", "ERROR") if total > frame_ms else
+                     (f"{total:.1f} ms an update", "TIME"))
+        lines.append((f"slide {stats['slide_ms']:.1f} ms, Blender "
+                      f"{stats['evaluate_ms'] + stats['write_ms']:.1f} ms", "NONE"))
     if s.live_preview and s.method == "elastic" and s.window > 0:
-        col.label(text="The preview slides each frame alone: a windowed bake can differ",
-                  icon="INFO")
+        lines.append(("The preview slides each frame alone: a windowed bake can differ", "INFO"))
     if s.live_error:
-        col.label(text=s.live_error, icon="ERROR")
+        lines.append((s.live_error, "ERROR"))
+    return lines
 
 
 class SKINSLIDE_PT_panel(bpy.types.Panel):

@@ -179,6 +179,10 @@ def update(obj, depsgraph, edited):
 # ---- The handlers -------------------------------------------------------------------------------
 
 def _previewed(scene):
+    """The scene's objects whose preview is on; none while a bake steps through the frames or a
+    render runs (a handler must not change data a render reads)."""
+    if _paused or bpy.app.is_job_running("RENDER"):
+        return []
     return [o for o in scene.objects if o.type == "MESH" and o.skinslide.live_preview]
 
 
@@ -197,7 +201,7 @@ def _sources(obj):
 
 @persistent
 def on_frame_change(scene, depsgraph):
-    if _busy or _paused:
+    if _busy:
         return
     for obj in _previewed(scene):
         update(obj, depsgraph, edited=False)
@@ -206,7 +210,7 @@ def on_frame_change(scene, depsgraph):
 @persistent
 def on_depsgraph_update(scene, depsgraph):
     """An edit: of the mesh (selection, weights, groups), of the rig, of the settings."""
-    if _busy or _paused:
+    if _busy:
         return
     updated = {u.id.original for u in depsgraph.updates}
     for obj in _previewed(scene):
@@ -236,6 +240,11 @@ def register():
 
 
 def unregister():
+    """The handlers removed and every preview stopped: no copy is left behind the add-on."""
+    previewed = [o for o in bpy.data.objects
+                 if o.type == "MESH" and o.skinslide.live_copy is not None]
+    for obj in previewed:  # not while iterating bpy.data.objects: stop() removes from it
+        stop(obj)
     for handlers, handler in ((bpy.app.handlers.frame_change_post, on_frame_change),
                               (bpy.app.handlers.depsgraph_update_post, on_depsgraph_update)):
         if handler in handlers:
