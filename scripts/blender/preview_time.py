@@ -10,7 +10,10 @@ Prints "key value" lines, medians over the warm frames (2..FRAMES), milliseconds
   preview_METHOD_*: the preview's own update (elastic, then paper) split as the panel shows it (evaluate: the evaluated
     mesh's positions read; slide: Slider.slide; write: the copy's positions set; set_up_check:
     the vertex count and the set-up's cache key), and frame_set with the preview on and off (the
-    scene's own evaluation, the armature).
+    scene's own evaluation, the armature); start: turning it on (the copy, the set-up, the first
+    slide); edit: an edit of the settings that changes nothing (the Slider's arguments read
+    again from the mesh, a weight group of every vertex among them), rebuild: one that changes
+    the strength (the set-up built again), each with its slide.
   cs_*: Corrective Smooth (10 iterations, the patch's free vertices as its group, bound at the
     rest pose: scripts/corrective_smooth.py's settings) after the armature: frame_set with the
     modifier on and off, and their difference, the modifier's own cost.
@@ -86,6 +89,9 @@ def rig(obj, positions, frames):
         group = obj.vertex_groups.new(name=name)
         for w in np.unique(weights):
             group.add(np.flatnonzero(weights == w).tolist(), float(w), "REPLACE")
+    weights = obj.vertex_groups.new(name="slide")  # every vertex 1: read, the same slide
+    weights.add(range(len(positions)), 1.0, "REPLACE")
+    obj.skinslide.weight_group = "slide"
     obj.modifiers.new("armature", "ARMATURE").object = arm
     bone = arm.pose.bones["tip"]
     bone.rotation_mode = "XYZ"
@@ -109,6 +115,16 @@ def frame_times(action=None):
     return times
 
 
+def edit_time(obj, edit):
+    """The update after `edit` of the settings: its whole time and its set-up part (the
+    arguments read again; the set-up rebuilt when they changed), ms."""
+    t0 = time.perf_counter()
+    edit()
+    elapsed = 1e3 * (time.perf_counter() - t0)
+    assert obj.skinslide.live_preview, obj.skinslide.live_error
+    return elapsed, live.STATS[obj.name]["set_up_ms"]
+
+
 def time_preview(obj, method):
     s = obj.skinslide
     s.method = method
@@ -118,10 +134,14 @@ def time_preview(obj, method):
     assert s.live_preview, s.live_error
     splits = []
     on = frame_times(lambda: splits.append(dict(live.STATS[obj.name])))
+    edit_ms = edit_time(obj, lambda: setattr(s, "strength", s.strength))
+    rebuild_ms = edit_time(obj, lambda: setattr(s, "strength", 0.9 if s.strength == 1 else 1.0))
     s.live_preview = False
     off = frame_times()
     out = {k: statistics.median(d[k] for d in splits) for k in splits[0]}
-    out.update(start_ms=start_ms, frame_set_on_ms=statistics.median(on),
+    out.update(start_ms=start_ms, edit_ms=edit_ms[0], edit_set_up_ms=edit_ms[1],
+               rebuild_ms=rebuild_ms[0], rebuild_set_up_ms=rebuild_ms[1],
+               frame_set_on_ms=statistics.median(on),
                frame_set_off_ms=statistics.median(off))
     return {f"preview_{method}_{k}": v for k, v in out.items()}
 
