@@ -11,7 +11,7 @@ group shows on the next frame, a new strength and a selection in Edit Mode at on
 says when an update is slower than a frame; turned off, the copy is gone and the grid
 deforms and draws as before. Errors stop the preview and are named on the panel (live_error):
 an empty patch, a selection the library refuses (stray faces making a bow-tie), a weight group
-deleted, the mesh edited to another vertex count. The add-on disabled with the preview on
+deleted, the copy deleted, the mesh edited to another vertex count. The add-on disabled with the preview on
 leaves nothing behind. Prints the time of each update.
 
 Blender runs the depsgraph update handlers when it evaluates the scene after an edit (the
@@ -224,6 +224,11 @@ def check_errors(grid, display):
         bpy.context.view_layer.update()
     expect_stop(grid, display, delete_weights, "no vertex group named 'doomed'")
     s.weight_group = "slide"
+
+    def delete_copy():
+        bpy.data.objects.remove(s.live_copy)
+        bpy.context.scene.frame_set(FRAMES[1])
+    expect_stop(grid, display, delete_copy, "the preview's copy was deleted")
 
     def add_vertices():
         bm = bmesh.new()

@@ -104,6 +104,7 @@ def stop(obj, error=""):
         obj.display_type = s.live_display
         s.live_display = ""
     _sliders.pop(obj.name, None)
+    STATS.pop(obj.name, None)
     if s.live_preview:  # stopped by an error: the toggle follows (its update calls stop again)
         s.live_preview = False
 
