@@ -106,7 +106,15 @@ check(grid, "elastic", "PC2", "", window=2)  # the command's --window over the s
 check(grid, "elastic", "SHAPE_KEYS", "", window=1, ends="cycle")  # and --window-ends cycle
 # A window left set on the panel is the elastic method's: paper bakes as the command without it.
 check(grid, "paper", "PC2", "", panel_window=3, ends="cycle")
-# An error is Blender's report, not a crash: a patch of no faces.
+# An error is Blender's report, not a crash: a weight group that is gone (a KeyError's traceback
+# before), a patch of no faces.
+grid.skinslide.weight_group = "gone"
+try:
+    bpy.ops.object.skinslide_bake()
+    raise SystemExit("bake_test: a missing weight group was not refused")
+except RuntimeError as e:
+    assert "no vertex group named 'gone'" in str(e), e
+grid.skinslide.weight_group = "slide"
 for p in grid.data.polygons:
     p.select = False
 try:
