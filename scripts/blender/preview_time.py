@@ -7,13 +7,14 @@ middle by a two-bone armature, all but 10 rings at each end the patch (the defau
         --python scripts/blender/preview_time.py -- build/python [SIDES RINGS FRAMES]
 
 Prints "key value" lines, medians over the warm frames (2..FRAMES), milliseconds:
-  preview_METHOD_*: the preview's own update (elastic, then paper) split as the panel shows it (evaluate: the evaluated
-    mesh's positions read; slide: Slider.slide; write: the copy's positions set; set_up_check:
-    the vertex count and the set-up's cache key), and frame_set with the preview on and off (the
-    scene's own evaluation, the armature); start: turning it on (the copy, the set-up, the first
-    slide); edit: an edit of the settings that changes nothing (the Slider's arguments read
-    again from the mesh, a weight group of every vertex among them), rebuild: one that changes
-    the strength (the set-up built again), each with its slide.
+  preview_METHOD_*: the preview (elastic, then paper). Its update as the panel splits it:
+    set_up (the vertex count checked, the set-up's cache key), evaluate (the evaluated mesh's
+    positions read), slide (Slider.slide), write (the copy's positions set), total; frame_set
+    with the preview on and off (off: the scene's own evaluation, the armature); start:
+    turning it on (the copy, the set-up, the first slide); edit: an edit of the settings that
+    changes nothing (the Slider's arguments read again from the mesh, a weight group of every
+    vertex among them), rebuild: one that changes the strength (the set-up built again), each
+    whole and its set_up part.
   cs_*: Corrective Smooth (10 iterations, the patch's free vertices as its group, bound at the
     rest pose: scripts/corrective_smooth.py's settings) after the armature: frame_set with the
     modifier on and off, and their difference, the modifier's own cost.

@@ -11,8 +11,8 @@ group shows on the next frame, a new strength and a selection in Edit Mode at on
 says when an update is slower than a frame; turned off, the copy is gone and the grid
 deforms and draws as before. Errors stop the preview and are named on the panel (live_error):
 an empty patch, a selection the library refuses (stray faces making a bow-tie), a weight group
-deleted, the copy deleted, the mesh edited to another vertex count. The add-on disabled with the preview on
-leaves nothing behind. Prints the time of each update.
+deleted, the copy deleted, the mesh edited to another vertex count. The add-on disabled with the
+preview on leaves nothing behind. Prints the time of each update.
 
 Blender runs the depsgraph update handlers when it evaluates the scene after an edit (the
 viewport's redraw); headless, view_layer.update() stands for that redraw.
