@@ -3,8 +3,8 @@
 # whole test suite (unit tests, end-to-end CLI tests, conformance with the reference). After
 # scripts/demo.sh (same configuration, the command only) the build is incremental.
 # Some tests drive real clients and install them when missing, as root (scripts/deps.sh): Blender
-# (cli_blender_cache, blender_addon) and Slurm (cli_slurm). Before anything is installed this
-# script says which are missing and which tests need them.
+# (cli_blender_cache, blender_addon, blender_live) and Slurm (cli_slurm). Before anything is
+# installed this script says which are missing and which tests need them.
 # Usage: scripts/test.sh [extra cmake -D options, e.g. -DSKINSLIDE_SANITIZE=address,undefined]
 #        SKINSLIDE_NO_INSTALL=1 scripts/test.sh   install none of those clients: their tests skip,
 #                                                 naming what is missing (the build's packages
@@ -14,7 +14,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 
 # The clients tests install, one a line: "packages|a command each provides|the tests and why".
 clients=(
-  "blender|blender|cli_blender_cache, blender_addon (Blender 3.4 plays our caches, bakes the add-on)"
+  "blender|blender|cli_blender_cache, blender_addon, blender_live (Blender 3.4 plays our caches, bakes the add-on, previews it live)"
   "slurm-wlm munge|sbatch munged|cli_slurm (a one-node Slurm cluster runs a farm shot)"
 )
 

@@ -13,118 +13,24 @@ command's positions rounded to float32, and the add-on's PC2 is byte for byte th
 command writes when it slides a PC2 of those frames. A cache goes beside the saved .blend when
 no folder is chosen; an unsaved .blend without a folder is refused.
 """
-import math
 import pathlib
-import subprocess
 import sys
 
 import bpy
 import numpy as np
 
 addon_dir, module_dir, skinslide_bin, work = sys.argv[sys.argv.index("--") + 1:]
-sys.path[:0] = [addon_dir, module_dir]
+sys.path[:0] = [addon_dir, module_dir, str(pathlib.Path(__file__).parent)]
 import skinslide  # noqa: E402
 import skinslide_addon  # noqa: E402
+from scene import FRAMES, build_scene, played_back  # noqa: E402
+import scene  # noqa: E402
 
 work = pathlib.Path(work)
-FRAMES = range(1, 5)
-
-
-def build_scene():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    skinslide_addon.register()
-    scene = bpy.context.scene
-    scene.frame_start, scene.frame_end = FRAMES[0], FRAMES[-1]
-    bpy.ops.mesh.primitive_grid_add(x_subdivisions=16, y_subdivisions=8, size=2)
-    grid = bpy.context.object
-    grid.scale = (2, 1, 1)
-    bpy.ops.object.transform_apply(scale=True)
-    # A shape key: a bulge in the middle, keyed from 0 to 1.
-    grid.shape_key_add(name="Basis")
-    bulge = grid.shape_key_add(name="bulge")
-    for v, k in zip(grid.data.vertices, bulge.data):
-        k.co.z = v.co.z + 0.3 * math.exp(-4 * (v.co.x ** 2 + v.co.y ** 2))
-    for frame, value in ((1, 0.0), (4, 1.0)):
-        bulge.value = value
-        bulge.keyframe_insert("value", frame=frame)
-    # An armature of two bones along x; the second bends the grid's right half.
-    bpy.ops.object.armature_add(location=(-2, 0, 0))
-    arm = bpy.context.object
-    bpy.ops.object.mode_set(mode="EDIT")
-    root = arm.data.edit_bones[0]
-    root.head, root.tail = (0, 0, 0), (2, 0, 0)
-    bent = arm.data.edit_bones.new("tip")
-    bent.head, bent.tail, bent.parent = (2, 0, 0), (4, 0, 0), root
-    bpy.ops.object.mode_set(mode="OBJECT")
-    for name, side in ((arm.data.bones[0].name, -1), ("tip", 1)):
-        group = grid.vertex_groups.new(name=name)
-        for v in grid.data.vertices:
-            w = min(1.0, max(0.0, 0.5 + side * v.co.x))  # a soft blend over the middle
-            if w > 0:
-                group.add([v.index], w, "REPLACE")
-    grid.modifiers.new("armature", "ARMATURE").object = arm
-    tip = arm.pose.bones["tip"]
-    tip.rotation_mode = "XYZ"
-    for frame, angle in ((1, 0.0), (4, 1.0)):
-        tip.rotation_euler = (0, 0, angle)
-        tip.keyframe_insert("rotation_euler", frame=frame)
-    # Controls: a pin and weights.
-    pins = grid.vertex_groups.new(name="pins")
-    pins.add([grid.data.vertices[60].index], 1.0, "REPLACE")
-    slide = grid.vertex_groups.new(name="slide")
-    for v in grid.data.vertices:
-        slide.add([v.index], 0.5 + 0.5 * (v.index % 3 == 0), "REPLACE")
-    # Every face but the first row is the patch.
-    for p in grid.data.polygons:
-        p.select = p.index >= 16
-    bpy.context.view_layer.objects.active = grid
-    grid.select_set(True)
-    return grid
-
-
-def write_obj(path, positions, mesh):
-    with open(path, "w") as f:
-        for x, y, z in positions:
-            f.write(f"v {float(x)!r} {float(y)!r} {float(z)!r}\n")
-        for p in mesh.polygons:
-            f.write("f " + " ".join(str(v + 1) for v in p.vertices) + "\n")
-
-
-def played_back(obj, frame):
-    bpy.context.scene.frame_set(frame)
-    return skinslide_addon.evaluated_positions(obj, bpy.context.evaluated_depsgraph_get(),
-                                               len(obj.data.vertices))
 
 
 def command_slide(grid, method, case, window, ends):
-    """The command line on the frames Blender evaluated (float32, written exactly): OBJ files,
-    and the same frames as a PC2 (startFrame the first frame, rate 1). Returns the frame OBJs."""
-    s = grid.skinslide
-    (case / "frames").mkdir(parents=True, exist_ok=True)
-    bind, faces, sizes = skinslide_addon.mesh_arrays(grid.data)
-    write_obj(case / "bind.obj", bind, grid.data)
-    frames, poses = [], []
-    for frame in FRAMES:
-        frames.append(case / "frames" / f"grid.{frame:04d}.obj")
-        poses.append(played_back(grid, frame))
-        write_obj(frames[-1], poses[-1], grid.data)
-    skinslide.write_cache(str(case / "shot.pc2"), np.stack(poses), start_frame=FRAMES[0])
-    patch = skinslide_addon.patch_faces(grid, s)
-    (case / "patch.txt").write_text(" ".join(map(str, patch)) + "\n")
-    weights = skinslide_addon.group_weights(grid, "slide")
-    (case / "weights.txt").write_text("".join(f"{w!r}\n" for w in weights))
-    (case / "pins.txt").write_text("60\n")
-    # The strength as the add-on holds it: a Blender float property is a float32 (0.9 is
-    # 0.8999999761581421), and the command must get those bits to give the add-on's.
-    strength = repr(float(s.strength))
-    windowed = ["--window", str(window), "--window-ends", ends] if window else []
-    for source in (frames, [case / "shot.pc2"]):
-        subprocess.run([skinslide_bin, "-q", "--method", method, *windowed,
-                        "--patch", case / "patch.txt",
-                        "--weights", case / "weights.txt", "--pin", case / "pins.txt",
-                        "--strength", strength, case / "bind.obj", *source, "-o", case / "slid"],
-                       check=True)
-    return frames
+    return scene.command_slide(skinslide_bin, grid, method, case, window, ends)
 
 
 def check(grid, method, bake_to, folder, window=0, ends="one-sided", panel_window=None):
@@ -200,7 +106,15 @@ check(grid, "elastic", "PC2", "", window=2)  # the command's --window over the s
 check(grid, "elastic", "SHAPE_KEYS", "", window=1, ends="cycle")  # and --window-ends cycle
 # A window left set on the panel is the elastic method's: paper bakes as the command without it.
 check(grid, "paper", "PC2", "", panel_window=3, ends="cycle")
-# An error is Blender's report, not a crash: a patch of no faces.
+# An error is Blender's report, not a crash: a weight group that is gone (a KeyError's traceback
+# before), a patch of no faces.
+grid.skinslide.weight_group = "gone"
+try:
+    bpy.ops.object.skinslide_bake()
+    raise SystemExit("bake_test: a missing weight group was not refused")
+except RuntimeError as e:
+    assert "no vertex group named 'gone'" in str(e), e
+grid.skinslide.weight_group = "slide"
 for p in grid.data.polygons:
     p.select = False
 try:

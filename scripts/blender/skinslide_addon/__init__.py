@@ -1,6 +1,7 @@
 """skinslide in Blender: slides the skin of a deformed mesh (armature, shape keys, any modifier)
 over a frame range and bakes the result onto a copy that plays it back: a PC2 point cache played
-by a Mesh Cache modifier (point_cache.py), or shape keys for short ranges.
+by a Mesh Cache modifier (point_cache.py), or shape keys for short ranges. Or live: the current
+frame slid on every frame change and every edit of the inputs, shown on a copy (live.py).
 
 The slide is the skinslide Python module's (lib/python), the same bits as the command line on
 the positions Blender evaluates. Install: scripts/blender/README.md.
@@ -20,6 +21,7 @@ import concurrent.futures
 import os
 import sys
 
+import bmesh
 import bpy
 import numpy as np
 
@@ -33,7 +35,7 @@ try:
 except ImportError:  # the panel says so; the operator refuses to run
     skinslide = None
 
-from . import point_cache  # noqa: E402
+from . import live, point_cache  # noqa: E402
 
 SLID_SUFFIX = " slid"     # the baked copy is named after the object
 KEY_PREFIX = "skinslide"  # its shape keys: skinslide.0001, ...
@@ -49,7 +51,7 @@ OPTION_SPECS = skinslide.option_specs() if skinslide is not None else []
 def _option_property(spec):
     """The Blender property of one option."""
     common = {"name": spec["name"].replace("_", " ").capitalize(), "description": spec["help"],
-              "default": spec["default"]}
+              "default": spec["default"], "update": live.settings_changed}
     if spec["type"] == "word":
         return bpy.props.EnumProperty(items=[(w, w.capitalize(), "") for w in spec["choices"]],
                                       **common)
@@ -65,18 +67,45 @@ def _group_items(self, context):
     return [("", "(none)", "")] + [(n, n, "") for n in names]
 
 
+# Solver internals, folded under the panel's Advanced: the options whose spec says "research"; a
+# module from before that key, these (every paper option but the method itself).
+ELASTIC_INTERNALS = {"rotation_fits", "max_iterations", "tolerance", "convergence", "blend",
+                     "ease_in"}
+
+
+def is_research(spec):
+    """Whether an option is a solver internal rather than an artist's choice."""
+    fallback = spec["method"] == "paper" or (spec["method"] == "elastic" and
+                                             spec["name"] in ELASTIC_INTERNALS)
+    return spec.get("research", fallback)
+
+
+_changed = live.settings_changed  # every input's update: the live preview follows it
+
+
 class SkinslideSettings(bpy.types.PropertyGroup):
     patch_source: bpy.props.EnumProperty(
-        name="Patch", description="Which faces slide",
+        name="Patch", description="Which faces slide", update=_changed,
         items=[("SELECTION", "Face selection", "The faces selected in Edit Mode"),
                ("FACE_MAP", "Face map", "The faces of a face map"),
                ("VERTEX_GROUP", "Vertex group", "The faces whose every corner is in the group")])
-    patch_face_map: bpy.props.StringProperty(name="Face map")
-    patch_group: bpy.props.StringProperty(name="Patch group")
+    patch_face_map: bpy.props.StringProperty(name="Face map", update=_changed)
+    patch_group: bpy.props.StringProperty(name="Patch group", update=_changed)
     pin_group: bpy.props.StringProperty(
-        name="Pins", description="Vertices of this group do not slide; the skin around them does")
+        name="Pins", description="Vertices of this group do not slide; the skin around them does",
+        update=_changed)
     weight_group: bpy.props.StringProperty(
-        name="Weights", description="Slide weight per vertex (0 stays, 1 slides); none: 1")
+        name="Weights", description="Slide weight per vertex (0 stays, 1 slides); none: 1",
+        update=_changed)
+    live_preview: bpy.props.BoolProperty(
+        name="Live preview", update=live.toggled,
+        description="Slide the current frame on every frame change and every edit, shown on a "
+                    "copy '<object> live' (the object drawn as a wire over it); nothing is written")
+    live_error: bpy.props.StringProperty(name="Live preview error",
+                                         description="Why the live preview stopped")
+    live_copy: bpy.props.PointerProperty(type=bpy.types.Object, name="Live copy")
+    live_display: bpy.props.StringProperty(
+        name="Display before the preview", description="The object's display type to restore")
     frame_start: bpy.props.IntProperty(name="Start", default=1)
     frame_end: bpy.props.IntProperty(name="End", default=250)
     use_scene_range: bpy.props.BoolProperty(name="Scene range", default=True)
@@ -120,7 +149,10 @@ def mesh_arrays(mesh):
 
 
 def group_weights(obj, name):
-    """Per vertex its weight in vertex group `name` (0 where not in it)."""
+    """Per vertex its weight in vertex group `name` (0 where not in it); ValueError when the
+    object has no such group."""
+    if name not in obj.vertex_groups:
+        raise ValueError(f"no vertex group named '{name}'")
     index = obj.vertex_groups[name].index
     weights = np.zeros(len(obj.data.vertices))
     for v in obj.data.vertices:
@@ -133,6 +165,10 @@ def group_weights(obj, name):
 def patch_faces(obj, s):
     """The face ids that slide, by the settings' patch source."""
     mesh = obj.data
+    if s.patch_source == "SELECTION" and obj.mode == "EDIT":  # the edit mesh's, live
+        faces = bmesh.from_edit_mesh(mesh).faces
+        faces.index_update()
+        return np.array([f.index for f in faces if f.select], dtype=np.int32)
     if s.patch_source == "SELECTION":
         selected = np.zeros(len(mesh.polygons), dtype=bool)
         mesh.polygons.foreach_get("select", selected)
@@ -150,19 +186,39 @@ def patch_faces(obj, s):
                     dtype=np.int32)
 
 
-def make_slider(obj, s):
+def mesh_vertex_count(obj):
+    """The object's vertex count now (in Edit Mode, the edit mesh's)."""
+    if obj.mode == "EDIT":
+        return len(bmesh.from_edit_mesh(obj.data).verts)
+    return len(obj.data.vertices)
+
+
+def slider_mesh_arguments(obj, s):
+    """The Slider's arguments read from the mesh: bind, faces, patch, pins and weights."""
     positions, face_vertices, face_sizes = mesh_arrays(obj.data)
     faces = patch_faces(obj, s)
     if len(faces) == 0:
         raise ValueError("the patch has no faces: select some, or choose a face map or group")
-    controls = {"strength": s.strength}
+    arguments = {"bind": positions, "faces": face_vertices, "patches": faces,
+                 "face_sizes": face_sizes}
     if s.pin_group:
-        controls["pins"] = np.flatnonzero(group_weights(obj, s.pin_group) > 0)
+        arguments["pins"] = np.flatnonzero(group_weights(obj, s.pin_group) > 0)
     if s.weight_group:
-        controls["weights"] = np.clip(group_weights(obj, s.weight_group), 0.0, 1.0)
-    return skinslide.Slider(positions, face_vertices, faces, face_sizes=face_sizes,
-                            method=s.method, threads=os.cpu_count() or 1,
-                            **controls, **slider_options(s))
+        arguments["weights"] = np.clip(group_weights(obj, s.weight_group), 0.0, 1.0)
+    return arguments
+
+
+def slider_settings(s):
+    """The Slider's arguments read from the settings: strength, method and its options."""
+    return {"strength": s.strength, "method": s.method, **slider_options(s)}
+
+
+def new_slider(mesh_arguments, settings):
+    return skinslide.Slider(threads=os.cpu_count() or 1, **mesh_arguments, **settings)
+
+
+def make_slider(obj, s):
+    return new_slider(slider_mesh_arguments(obj, s), slider_settings(s))
 
 
 def sequence_options(s):
@@ -270,6 +326,7 @@ class SKINSLIDE_OT_bake(bpy.types.Operator):
         wm = context.window_manager
         wm.progress_begin(0, 2 * len(frames))
         current = scene.frame_current
+        live.pause(True)  # the preview does not follow the bake's frames
         try:
             # Where the cache goes, known before any frame is slid (an unsaved .blend refuses).
             path = point_cache.cache_path(obj, s.cache_folder) if s.bake_to == "PC2" else None
@@ -286,6 +343,7 @@ class SKINSLIDE_OT_bake(bpy.types.Operator):
             self.report({"ERROR"}, f"skinslide: {e}")
             return {"CANCELLED"}
         finally:
+            live.pause(False)
             scene.frame_set(current)
             wm.progress_end()
         self.report({"INFO"}, f"skinslide: {len(frames)} frames baked into "
@@ -294,6 +352,38 @@ class SKINSLIDE_OT_bake(bpy.types.Operator):
 
 
 # ---- The panel --------------------------------------------------------------------------------
+
+def _method_options(s, research):
+    """The specs the panel draws for the settings' method: the artist's, or the internals."""
+    return [spec for spec in OPTION_SPECS
+            if spec["method"] == s.method and is_research(spec) == research]
+
+
+def draw_live(layout, obj, s, scene):
+    """The preview's toggle, its last update's time (or why it is slow), its error."""
+    col = layout.column()
+    col.prop(s, "live_preview", icon="PLAY" if not s.live_preview else "PAUSE")
+    for text, icon in live_lines(s, live.STATS.get(obj.name), live.frame_ms(scene)):
+        col.label(text=text, icon=icon)
+
+
+def live_lines(s, stats, frame_ms):
+    """What the panel says of the preview, (text, icon) a line: the last update's time, or that
+    it is slower than the frame rate; its split; that a windowed bake can differ; the error."""
+    lines = []
+    if s.live_preview and stats:
+        total = stats["total_ms"]
+        lines.append((f"Slower than the frame rate: {total:.1f} ms an update, {frame_ms:.1f} ms "
+                      f"a frame", "ERROR") if total > frame_ms else
+                     (f"{total:.1f} ms an update", "TIME"))
+        lines.append((f"slide {stats['slide_ms']:.1f} ms, Blender "
+                      f"{stats['evaluate_ms'] + stats['write_ms']:.1f} ms", "NONE"))
+    if s.live_preview and s.method == "elastic" and s.window > 0:
+        lines.append(("The preview slides each frame alone: a windowed bake can differ", "INFO"))
+    if s.live_error:
+        lines.append((s.live_error, "ERROR"))
+    return lines
+
 
 class SKINSLIDE_PT_panel(bpy.types.Panel):
     bl_label = "Skin Slide"
@@ -320,13 +410,18 @@ class SKINSLIDE_PT_panel(bpy.types.Panel):
         col.prop_search(s, "pin_group", obj, "vertex_groups")
         col.prop_search(s, "weight_group", obj, "vertex_groups")
         col.separator()
-        for spec in OPTION_SPECS:  # strength, method, then the chosen method's options
-            if spec["method"] in (None, s.method):
+        for spec in OPTION_SPECS:  # strength, method
+            if spec["method"] is None:
                 col.prop(s, spec["name"])
+        for spec in _method_options(s, research=False):  # the quality dial, if the method has one
+            col.prop(s, spec["name"])
+        layout.separator()
+        draw_live(layout, obj, s, context.scene)
+        layout.separator()
+        col = layout.column()
         for spec in SEQUENCE_SPECS:  # the window over the range and its ends
             if spec["method"] == s.method:
                 col.prop(s, spec["name"])
-        col.separator()
         col.prop(s, "use_scene_range")
         row = col.row(align=True)
         row.enabled = not s.use_scene_range
@@ -339,16 +434,34 @@ class SKINSLIDE_PT_panel(bpy.types.Panel):
         layout.operator(SKINSLIDE_OT_bake.bl_idname, icon="RENDER_ANIMATION")
 
 
-CLASSES = (SkinslideSettings, SKINSLIDE_OT_bake, SKINSLIDE_PT_panel)
+class SKINSLIDE_PT_advanced(bpy.types.Panel):
+    """The method's solver internals: folded, their defaults are the library's."""
+    bl_label = "Advanced"
+    bl_parent_id = "SKINSLIDE_PT_panel"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "object"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        s = context.object.skinslide
+        col = self.layout.column()
+        for spec in _method_options(s, research=True):
+            col.prop(s, spec["name"])
+
+
+CLASSES = (SkinslideSettings, SKINSLIDE_OT_bake, SKINSLIDE_PT_panel, SKINSLIDE_PT_advanced)
 
 
 def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Object.skinslide = bpy.props.PointerProperty(type=SkinslideSettings)
+    live.register()
 
 
 def unregister():
+    live.unregister()
     del bpy.types.Object.skinslide
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)
