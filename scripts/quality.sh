@@ -3,16 +3,20 @@
 # and what it costs in flipped triangles, surface error, border motion and popping.
 #
 # Usage: scripts/quality.sh [--cases a,b,...]
-#                           [--methods unslid,paper,elastic,elastic-blend,elastic-smooth,elastic-window[,elastic-converged][,prototype][,corrective-smooth]]
+#                           [--methods unslid,paper,elastic,elastic-search,elastic-blend,elastic-smooth,elastic-window[,elastic-converged][,prototype][,corrective-smooth]]
 #                           [--keep DIR]
 #
 #   --cases    default: ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face,
 #              swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
-#   --methods  default: unslid,paper,elastic,elastic-blend,elastic-smooth,elastic-window,
-#              corrective-smooth
+#   --methods  default: unslid,paper,elastic,elastic-search,elastic-blend,elastic-smooth,
+#              elastic-window,corrective-smooth
 #              unslid    the frames as they are (the baseline; same measuring code path)
 #              paper     skinslide --method paper (a binary without --method: its default)
-#              elastic   skinslide --method elastic ("n/a" when the binary has no such method)
+#              elastic   skinslide --method elastic ("n/a" when the binary has no such method):
+#                        the default, the map (--solver map --passes 2)
+#              elastic-search
+#                        the same with --solver search: the search for a minimum (the default
+#                        before the map; "n/a" when the binary has no --solver)
 #              elastic-blend
 #                        the same with --blend 1: relaxed on the facets blended smooth ("n/a"
 #                        when the binary has no --blend)
@@ -141,7 +145,7 @@ export QUALITY_REFERENCE=$REFDIR
 cases=ict-face,ict-cheek,cesium-knee,fox-leg,data-elbow,data-face
 cases+=,swing-tube,swing-elbow,swing-finger,swing-hand,swing-camel,swing-cesium
 QUALITY_CONVERGED=${QUALITY_CONVERGED:---solver search --tolerance 1e-6 --max-iterations 1000 --rotation-fits 10}
-methods=unslid,paper,elastic,elastic-blend,elastic-smooth,elastic-window,corrective-smooth
+methods=unslid,paper,elastic,elastic-search,elastic-blend,elastic-smooth,elastic-window,corrective-smooth
 methods_given=0
 keep=
 while [[ $# -gt 0 ]]; do
@@ -163,7 +167,7 @@ for c in "${case_list[@]}"; do
         *) echo "quality.sh: unknown case $c" >&2; exit 2 ;; esac
 done
 for m in "${method_list[@]}"; do
-    case $m in unslid|paper|elastic|elastic-blend|elastic-smooth|elastic-window|elastic-converged|prototype|corrective-smooth) ;;
+    case $m in unslid|paper|elastic|elastic-search|elastic-blend|elastic-smooth|elastic-window|elastic-converged|prototype|corrective-smooth) ;;
         *) echo "quality.sh: unknown method $m" >&2; exit 2 ;; esac
 done
 
@@ -187,11 +191,12 @@ fi
 [[ -x $SKINSLIDE ]] || { echo "quality.sh: no binary at $SKINSLIDE" >&2; exit 1; }
 
 help_text=$("$SKINSLIDE" --help)
-has_method=0; has_elastic=0; has_blend=0; has_ease_in=0; has_window=0
+has_method=0; has_elastic=0; has_blend=0; has_ease_in=0; has_window=0; has_solver=0
 if grep -q -- '--method' <<<"$help_text"; then
     has_method=1
     grep -q 'elastic' <<<"$help_text" && has_elastic=1
     grep -q -- '--blend' <<<"$help_text" && has_blend=1
+    grep -q -- '--solver' <<<"$help_text" && has_solver=1
     grep -q -- '--ease-in' <<<"$help_text" && has_ease_in=1
     grep -q -- '--window' <<<"$help_text" && has_window=1
 fi
@@ -222,6 +227,8 @@ method_args() {
     case $1 in
         paper) [[ $has_method == 1 ]] && margs=(--method paper); return 0 ;;
         elastic) [[ $has_elastic == 1 ]] || return 1; margs=(--method elastic); return 0 ;;
+        elastic-search)
+            [[ $has_solver == 1 ]] || return 1; margs=(--method elastic --solver search); return 0 ;;
         elastic-blend)
             [[ $has_blend == 1 ]] || return 1; margs=(--method elastic --solver search --blend 1); return 0 ;;
         elastic-smooth)
