@@ -2,7 +2,8 @@
 """Writes data/before_after.png, the picture at the top of README.md.
 
 The ICT-FaceKit face (faces 0-9229 of generic_neutral_mesh.obj: the face with its mouth and eye
-holes) is the patch; the jawOpen shape is the frame. skinslide slides it (its default method),
+holes) is the patch; the jawOpen shape is the frame. skinslide slides it (elastic, `--solver
+search`: an expression is a separate pose),
 and both the frame as the deformer left it and the slid frame are drawn side by side, from the
 front (orthographic, z-buffered, flat-shaded), each face coloured by how much its edges changed
 length against the bind: the mean of log(L / L_bind) over the face's edges, white = as in the
@@ -246,7 +247,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         d = pathlib.Path(tmp)
         (d / "patch.txt").write_text("0-%d\n" % (PATCH_FACES - 1))
-        subprocess.run([skinslide, "-q", "--patch", str(d / "patch.txt"),
+        subprocess.run([skinslide, "-q", "--solver", "search", "--patch", str(d / "patch.txt"),
                         str(ict / "generic_neutral_mesh.obj"), str(ict / (EXPRESSION + ".obj")),
                         "-o", str(d / "slid")], check=True)
         bind, faces = read_obj(ict / "generic_neutral_mesh.obj")
