@@ -118,37 +118,17 @@ Positions2 map_step(const ElasticMetric& metric, const std::vector<TangentFrame>
                     const Positions3& gradient, const std::vector<Eigen::Matrix2d>& damping,
                     int iterations, DirectionWork& work, int& done) {
   const Index m = metric.size();
-  Positions2 &r = work.r, &x = work.x, &z = work.z, &p = work.p, &Ap = work.Ap;
+  Positions2 &r = work.r, &x = work.x;
   r.resize(m);
-  x.assign(m, Vec2::Zero());
-  z.resize(m);
-  p.resize(m);
-  Ap.resize(m);
   work.motion.resize(m);
   for (Index i = 0; i < m; ++i) r[i] = -(frames[i].Q.transpose() * gradient[i]);
-  double rz = 0;
-  for (int it = 0; it < iterations; ++it) {
-    z = r;
-    cholesky_solve(metric.factor, z, work.permuted);
-    const double rz_next = dot(r, z);
-    if (!(rz_next > 0)) break;
-    if (it == 0) {
-      p = z;
-    } else {
-      const double beta = rz_next / rz;
-      for (Index i = 0; i < m; ++i) p[i] = z[i] + beta * p[i];
-    }
-    rz = rz_next;
-    apply_damped(metric, frames, damping, p, work.motion, Ap);
-    const double pAp = dot(p, Ap);
-    if (!(pAp > 0)) break;
-    const double a = rz / pAp;
-    for (Index i = 0; i < m; ++i) {
-      x[i] += a * p[i];
-      r[i] -= a * Ap[i];
-    }
-    ++done;
-  }
+  done += conjugate_gradients(
+      work, iterations,
+      [&](Positions2& z) { cholesky_solve(metric.factor, z, work.permuted); },
+      [&](const Positions2& p, Positions2& Ap) {
+        apply_damped(metric, frames, damping, p, work.motion, Ap);
+      },
+      [](const Positions2&) { return true; });
   Positions2 d(m);
   for (Index i = 0; i < m; ++i) d[i] = frames[i].S_inverse * x[i];
   return d;

@@ -135,12 +135,9 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
   stays.resize(m);
   for (Index i = 0; i < m; ++i) stays[i] = (!held.empty() && held[i]) || frames[i].crushed;
   const auto is_held = [&](Index i) { return stays[i] != 0; };
-  Positions2 &r = work.r, &x = work.x, &z = work.z, &p = work.p, &Ap = work.Ap;
+  Positions2 &r = work.r, &x = work.x;
   r.resize(m);
-  x.assign(m, Vec2::Zero());
-  z.resize(m);
-  p.resize(m);
-  Ap.resize(m);
+  x.assign(m, Vec2::Zero());  // held_direction reads it, also after a zero gradient
   work.motion.resize(m);
   for (Index i = 0; i < m; ++i) {
     r[i] = is_held(i) ? Vec2::Zero() : Vec2(-(frames[i].Q.transpose() * gradient[i]));
@@ -151,32 +148,18 @@ StepDirection step_direction(const ElasticMetric& metric, const std::vector<Tang
     return out;
   }
   const double r_stop = solve.tolerance * solve.tolerance * r0 * r0;
-  double rz = 0;
-  while (out.iterations < solve.max_iterations && dot(r, r) > r_stop) {
-    // The bind's factor sees every vertex free: held ones are masked out around it.
-    z = r;
-    cholesky_solve(metric.factor, z, work.permuted);
-    for (Index i = 0; i < m; ++i)
-      if (is_held(i)) z[i].setZero();
-    const double rz_next = dot(r, z);
-    if (!(rz_next > 0)) break;
-    if (out.iterations == 0) {
-      p = z;
-    } else {
-      const double beta = rz_next / rz;
-      for (Index i = 0; i < m; ++i) p[i] = z[i] + beta * p[i];
-    }
-    rz = rz_next;
-    apply_system(metric, frames, stays, p, work.motion, Ap);
-    const double pAp = dot(p, Ap);
-    if (!(pAp > 0)) break;
-    const double a = rz / pAp;
-    for (Index i = 0; i < m; ++i) {
-      x[i] += a * p[i];
-      r[i] -= a * Ap[i];
-    }
-    ++out.iterations;
-  }
+  out.iterations = conjugate_gradients(
+      work, solve.max_iterations,
+      [&](Positions2& z) {
+        // The bind's factor sees every vertex free: held ones are masked out around it.
+        cholesky_solve(metric.factor, z, work.permuted);
+        for (Index i = 0; i < m; ++i)
+          if (is_held(i)) z[i].setZero();
+      },
+      [&](const Positions2& p, Positions2& Ap) {
+        apply_system(metric, frames, stays, p, work.motion, Ap);
+      },
+      [&](const Positions2& residual) { return dot(residual, residual) > r_stop; });
   out.capped = out.iterations >= solve.max_iterations && dot(r, r) > r_stop;
   out.residual = std::sqrt(dot(r, r)) / r0;
   for (Index i = 0; i < m; ++i) {

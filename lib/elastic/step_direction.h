@@ -69,6 +69,48 @@ struct DirectionWork {
   Positions3 motion;
 };
 
+/// Preconditioned conjugate gradients (Hestenes & Stiefel 1952) from x = 0 on A x = b: on entry
+/// work.r holds b, on return work.x the iterate and work.r its residual. `precondition(z)`
+/// applies M^-1 in place, `apply(p, Ap)` writes A p. Iterates while fewer than max_iterations are
+/// done and more(r) holds; stops early when r^T M^-1 r or p^T A p is not positive (solved
+/// exactly, or A not definite along p). Returns the iterations done. The one loop of both
+/// solvers' step systems (rule 7 and the map's M3).
+template <class Precondition, class Apply, class More>
+int conjugate_gradients(DirectionWork& work, int max_iterations, Precondition precondition,
+                        Apply apply, More more) {
+  Positions2 &r = work.r, &x = work.x, &z = work.z, &p = work.p, &Ap = work.Ap;
+  const size_t m = r.size();
+  x.assign(m, Vec2::Zero());
+  z.resize(m);
+  p.resize(m);
+  Ap.resize(m);
+  double rz = 0;
+  int done = 0;
+  while (done < max_iterations && more(r)) {
+    z = r;
+    precondition(z);
+    const double rz_next = dot(r, z);
+    if (!(rz_next > 0)) break;
+    if (done == 0) {
+      p = z;
+    } else {
+      const double beta = rz_next / rz;
+      for (size_t i = 0; i < m; ++i) p[i] = z[i] + beta * p[i];
+    }
+    rz = rz_next;
+    apply(p, Ap);
+    const double pAp = dot(p, Ap);
+    if (!(pAp > 0)) break;
+    const double a = rz / pAp;
+    for (size_t i = 0; i < m; ++i) {
+      x[i] += a * p[i];
+      r[i] -= a * Ap[i];
+    }
+    ++done;
+  }
+  return done;
+}
+
 struct StepDirection {
   Positions2 d;         ///< per movable vertex, its chart step
   int iterations = 0;   ///< conjugate-gradient iterations
