@@ -16,6 +16,7 @@
 #include "command_line.h"
 #include "core/allocator.h"
 #include "core/error.h"
+#include "core/number_format.h"
 #include "core/version.h"
 #include "compare.h"
 #include "exit_status.h"
@@ -69,7 +70,8 @@ int run_and_print(const cli::CliOptions& o) {
               ", or no window for separate poses";
   if (!counts.empty()) counts = " (" + counts + ")";
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
-    std::fprintf(stderr, "skinslide: %zu frames %s%s%s in %.2f s -> %s\n", result.frames - failed,
+    std::fprintf(stderr, "skinslide: %s %s%s%s in %.2f s -> %s\n",
+                 counted(result.frames - failed, "frame", "frames").c_str(),
                  o.run.no_slide ? "copied" : "slid", counts.c_str(),
                  failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
                  progress->elapsed_seconds(), o.run.output.c_str());

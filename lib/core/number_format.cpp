@@ -86,4 +86,8 @@ std::optional<long long> parse_integer(std::string_view text) {
   return x;
 }
 
+std::string counted(std::size_t n, std::string_view one, std::string_view many) {
+  return std::to_string(n) + " " + std::string(n == 1 ? one : many);
+}
+
 }  // namespace skinslide

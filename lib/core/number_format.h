@@ -24,6 +24,9 @@ struct DoubleText {
 };
 DoubleText double_text(double x);
 
+/// "1 patch", "2 patches": a count and its noun, singular for exactly one.
+std::string counted(std::size_t n, std::string_view one, std::string_view many);
+
 /// Four significant digits ("%.4g"), for log lines: "0.1235", "1.5e-05".
 std::string log_number(double x);
 

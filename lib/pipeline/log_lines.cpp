@@ -57,7 +57,7 @@ std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& resu
                                                   ", max slide " + log_number(max_slide));
   std::vector<LogLine> lines;
   lines.push_back({LogLevel::Info, "skinslide: " + frame_path + ": " +
-                                       std::to_string(setup.patches.size()) + " patches, " +
+                                       counted(setup.patches.size(), "patch", "patches") + ", " +
                                        summary + " -> " + out_path});
   for (size_t p = 0; p < result.patches.size(); ++p) {
     const PatchFrameReport& r = result.patches[p];
@@ -83,7 +83,7 @@ std::vector<LogLine> bind_lines(const RunOptions& o, const BindSetup& setup,
   else
     lines.push_back(
         {LogLevel::Info,
-         "skinslide: " + o.bind + ": " + std::to_string(setup.patches.size()) + " patches, " +
+         "skinslide: " + o.bind + ": " + counted(setup.patches.size(), "patch", "patches") + ", " +
              std::to_string(sliding) + " sliding vertices (" + method_label(setup.method) +
              (o.window > 0 ? ", window " + std::to_string(o.window) +
                                  (o.window_ends == WindowEnds::Cycle ? " around a loop" : "")

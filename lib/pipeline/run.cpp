@@ -204,6 +204,8 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
   const FrameSource source = frame_source(o, bind, std::move(files_plan), cache_run);
   const FramePlan& plan = source.plan;
   check_output_folder(plan.folder, first_output(plan));
+  // --window's frame numbers are checked before the set-up too (a file without one is refused).
+  const std::optional<WindowPlan> window_plan = run_window_plan(o, source);
   if (!files) errors.resize(plan.chosen.size());
   std::vector<std::vector<Index>> selections;
   for (const std::string& p : o.patches)
@@ -230,7 +232,7 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
                        threads, [&](Index s) { return "--patch " + o.patches[s]; });
   report.bind_seconds = seconds_since(t_run);
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
-  if (const std::optional<LogLine> line = run_window_line(o, source, run_window_plan(o, source)))
+  if (const std::optional<LogLine> line = run_window_line(o, source, window_plan))
     log(*line);
   make_output_dir(plan.folder);
   if (!o.dump_dir.empty())

@@ -111,7 +111,7 @@ variant huge.0001.obj '7s/.*/v 1e999 1 0/' $F
 expect obj_overflowing_number 3 "huge.0001.obj:7: vertex coordinate '1e999' is not finite (beyond the largest double, 1.8e308)" --patch $P $B "$tmp/huge.0001.obj"
 # A number nearer 0 than the smallest double (1e-400) is one: read as 0, as strtod reads it.
 variant tiny.obj '7s/.*/v 1 1 1e-400/'
-expect obj_underflowing_number_valid 0 "1 frames slid" --patch $P "$tmp/tiny.obj" $F
+expect obj_underflowing_number_valid 0 "1 frame slid" --patch $P "$tmp/tiny.obj" $F
 "$bin" -q -o "$tmp/out/untiny" --patch $P $B $F
 cmp -s "$tmp/out/obj_underflowing_number_valid/$F" "$tmp/out/untiny/$F" ||
   fail "obj_underflowing_number_valid: not the slide of the bind with a 0 there"
@@ -122,15 +122,15 @@ expect obj_vertex_word_after_coordinates 3 "word_tail.obj:7: vertex entry 'abc' 
 variant five.obj '7s/.*/v 1 1 0 1 1 1 1 1/'
 expect obj_vertex_too_many_numbers 3 "five.obj:7: vertex has 8 numbers; at most 7" --patch $P "$tmp/five.obj" $F
 variant colour.0001.obj '7s/$/ 0.5 0.25 0.125 1/' $F
-expect obj_vertex_colour_valid 0 "1 frames slid" --patch $P $B "$tmp/colour.0001.obj"
+expect obj_vertex_colour_valid 0 "1 frame slid" --patch $P $B "$tmp/colour.0001.obj"
 sed -n 7p "$tmp/out/obj_vertex_colour_valid/colour.0001.obj" | grep -q ' 0.5 0.25 0.125 1$' ||
   fail "obj_vertex_colour_valid: the slid vertex lost its colour"
 # Slide weights from a colour channel: r g b, or r g b a with the alpha ignored (the weights, so
 # the slide, of the same colours without it); a vertex with a w only has no colour.
 awk '/^v /{print $0, "0.5 0.25 1"; next} {print}' $B >"$tmp/rgb.obj"
 awk '/^v /{print $0, "0.5 0.25 1 0.75"; next} {print}' $B >"$tmp/rgba.obj"
-expect obj_colour_weights_rgb_valid 0 "1 frames slid" --weights-from-obj-color g --patch $P "$tmp/rgb.obj" $F
-expect obj_colour_weights_alpha_ignored_valid 0 "1 frames slid" --weights-from-obj-color g --patch $P "$tmp/rgba.obj" $F
+expect obj_colour_weights_rgb_valid 0 "1 frame slid" --weights-from-obj-color g --patch $P "$tmp/rgb.obj" $F
+expect obj_colour_weights_alpha_ignored_valid 0 "1 frame slid" --weights-from-obj-color g --patch $P "$tmp/rgba.obj" $F
 cmp -s "$tmp/out/obj_colour_weights_rgb_valid/$F" "$tmp/out/obj_colour_weights_alpha_ignored_valid/$F" ||
   fail "obj_colour_weights_alpha_ignored_valid: not the slide of the same colours without alpha"
 awk '/^v /{print $0, "1"; next} {print}' $B >"$tmp/w_only.obj"
@@ -146,8 +146,8 @@ expect obj_keyword_without_space 3 "nospace.obj:7: unknown statement 'v" --patch
 printf '\xEF\xBB\xBF' | cat - $B >"$tmp/bom.obj"
 printf '\xEF\xBB\xBF' | cat - $F >"$tmp/bom.0001.obj"
 printf '\xEF\xBB\xBF' | cat - $P >"$tmp/bom.txt"
-expect obj_byte_order_mark 0 "1 frames slid" --patch "$tmp/bom.txt" "$tmp/bom.obj" "$tmp/bom.0001.obj"
-expect obj_no_byte_order_mark 0 "1 frames slid" -o "$tmp/out/nobom" --patch $P $B "$tmp/bom.0001.obj"
+expect obj_byte_order_mark 0 "1 frame slid" --patch "$tmp/bom.txt" "$tmp/bom.obj" "$tmp/bom.0001.obj"
+expect obj_no_byte_order_mark 0 "1 frame slid" -o "$tmp/out/nobom" --patch $P $B "$tmp/bom.0001.obj"
 if ! cmp -s <(tail -c +4 "$tmp/out/obj_byte_order_mark/bom.0001.obj") <(tail -c +4 "$tmp/out/nobom/bom.0001.obj") ||
   [ "$(head -c 3 "$tmp/out/obj_byte_order_mark/bom.0001.obj" | od -An -tx1 | tr -d ' ')" != efbbbf ]; then
   fail "obj_byte_order_mark: not the slide without the mark, or the mark lost"
@@ -183,14 +183,14 @@ variant corner_vt0.obj '20s|.*|f 3/1 4/0 8/1 7/1|'
 expect obj_face_corner_texture_index_0 3 "corner_vt0.obj:20: face corner '4/0': texture index 0 (OBJ indices start at 1)" --patch $P "$tmp/corner_vt0.obj" $F
 # Valid: an empty part (1//3), relative parts, vt and vn that no line defines (they are not read).
 variant corner_parts.obj '20s|.*|f 3//1 4/-1/-1 8/2/ 7/+3/3|'
-expect obj_face_corner_parts_valid 0 "1 patches, 4 sliding vertices" --patch $P "$tmp/corner_parts.obj" $F
+expect obj_face_corner_parts_valid 0 "1 patch, 4 sliding vertices" --patch $P "$tmp/corner_parts.obj" $F
 variant cont.obj '20s/.*/f 3 4 \\/'
 expect obj_line_continuation 3 "cont.obj:20: line continuation" --patch $P "$tmp/cont.obj" $F
 # Valid: relative indices, v lines after the faces, slashes and extra statements.
 awk 'BEGIN{n=0} /^v /{n++} /^f /{printf "f"; for(i=2;i<=NF;i++) printf " %d/%d", $i-n-1, 1; print ""; next} {print}' $B >"$tmp/relative.obj"
-expect obj_relative_indices_valid 0 "1 patches, 4 sliding vertices" --patch $P "$tmp/relative.obj" $F
+expect obj_relative_indices_valid 0 "1 patch, 4 sliding vertices" --patch $P "$tmp/relative.obj" $F
 { grep '^f ' $B; grep -v '^f ' $B; } >"$tmp/faces_first.obj"
-expect obj_v_after_f_valid 0 "1 patches, 4 sliding vertices" --patch $P "$tmp/faces_first.obj" $F
+expect obj_v_after_f_valid 0 "1 patch, 4 sliding vertices" --patch $P "$tmp/faces_first.obj" $F
 
 # --- patch files -------------------------------------------------------------------------------
 printf '0-4\nselect -r pBody\n' >"$tmp/token.txt"
@@ -208,7 +208,7 @@ expect patch_backward_range 3 "back.txt:1: range '8-0' runs backwards" --patch "
 printf '0-8\n\x00\x01\x02' >"$tmp/bin.txt"
 expect patch_binary 3 "bin.txt:2: binary data (NUL byte)" --patch "$tmp/bin.txt" $B $F
 printf 'pBody.f[0:8]\n' >"$tmp/maya_ok.txt"
-expect patch_maya_one_object_valid 0 "1 patches, 4 sliding vertices" --patch "$tmp/maya_ok.txt" $B $F
+expect patch_maya_one_object_valid 0 "1 patch, 4 sliding vertices" --patch "$tmp/maya_ok.txt" $B $F
 
 # --- patch topology ----------------------------------------------------------------------------
 printf '0-5\n' >"$tmp/cube.txt"
@@ -242,10 +242,10 @@ expect degenerate_bind_zero_area 0 "sliding vertices" --patch $P "$tmp/sliver.ob
 # Degenerate frames, with each method: the paper's log line counts its locator's fallbacks, the
 # elastic one its relaxation.
 variant collapsed_edge.0001.obj '7s/.*/v 2.2 1 0.4/' $F
-expect degenerate_frame_zero_length_edge 0 "1 patches, elastic" --patch $P $B "$tmp/collapsed_edge.0001.obj"
+expect degenerate_frame_zero_length_edge 0 "1 patch, elastic" --patch $P $B "$tmp/collapsed_edge.0001.obj"
 expect degenerate_frame_zero_length_edge_paper 0 "fallbacks" --method paper --patch $P $B "$tmp/collapsed_edge.0001.obj"
 variant folded.0001.obj '7s/.*/v 2.8 1.5 -0.5/' $F  # vertex 5 pulled across its neighbours
-expect degenerate_frame_folded 0 "1 patches, elastic" --patch $P $B "$tmp/folded.0001.obj"
+expect degenerate_frame_folded 0 "1 patch, elastic" --patch $P $B "$tmp/folded.0001.obj"
 expect degenerate_frame_folded_paper 0 "fallbacks" --method paper --patch $P $B "$tmp/folded.0001.obj"
 # The paper's nets fold where the frame's bars cross: its log and report count the slid triangles
 # turned against the frame's (they said only "net flips 0"); the elastic method turns none.
@@ -254,13 +254,13 @@ expect noisy_frame_elastic_turns_none 0 "flips 0," --patch noisy.txt noisy_bind.
 awk '/^v /{print "v 1 1 1"; next} {print}' $B >"$tmp/point.0001.obj"
 # Every vertex on one point: the paper's bar net has no length to work with (refused); to the
 # elastic method it is the bind scaled to nothing, at rest: written unchanged.
-expect degenerate_frame_all_collapsed 0 "1 frames slid" --patch $P $B "$tmp/point.0001.obj"
+expect degenerate_frame_all_collapsed 0 "1 frame slid" --patch $P $B "$tmp/point.0001.obj"
 cmp -s "$tmp/point.0001.obj" "$tmp/out/degenerate_frame_all_collapsed/point.0001.obj" ||
   fail "degenerate_frame_all_collapsed: the frame was not written unchanged"
 expect degenerate_frame_all_collapsed_paper 3 "point.0001.obj: patch 0: every bar of the patch has zero (or non-finite) length" --method paper --patch $P $B "$tmp/point.0001.obj"
 awk '/^v /{print "v", $2, 0, 0; next} {print}' $B >"$tmp/flat.obj"
-expect degenerate_bind_all_collapsed_to_a_line 0 "1 frames slid" --patch $P "$tmp/flat.obj" $F
-expect degenerate_bind_all_collapsed_to_a_line_paper 0 "1 frames slid" --method paper --patch $P "$tmp/flat.obj" $F
+expect degenerate_bind_all_collapsed_to_a_line 0 "1 frame slid" --patch $P "$tmp/flat.obj" $F
+expect degenerate_bind_all_collapsed_to_a_line_paper 0 "1 frame slid" --method paper --patch $P "$tmp/flat.obj" $F
 # Coordinates near 1e300: lengths overflow a double (they read as "zero length" once); refused,
 # naming the vertex, in the bind and in a frame.
 awk '/^v /{print "v", $2 "e300", $3 "e300", $4 "e300"; next} {print}' $B >"$tmp/vast.obj"
@@ -276,8 +276,8 @@ expect degenerate_bind_underflowing_coordinates 3 "patch 0 (face 0 ($tmp/speck.o
 expect degenerate_frame_underflowing_coordinates_paper 3 "speck.0001.obj: patch 0: vertex 3 at (3e-300, 0, 9e-301): coordinates too small" --method paper --patch $P $B "$tmp/speck.0001.obj"
 awk '/^v /{print "v", $2 "e-6", $3 "e-6", $4 "e-6"; next} {print}' $B >"$tmp/milli.obj"
 awk '/^v /{print "v", $2 "e-6", $3 "e-6", $4 "e-6"; next} {print}' $F >"$tmp/milli.0001.obj"
-expect small_scale_valid 0 "1 frames slid" --patch $P "$tmp/milli.obj" "$tmp/milli.0001.obj"
-expect small_scale_valid_paper 0 "1 frames slid" --method paper --patch $P "$tmp/milli.obj" "$tmp/milli.0001.obj"
+expect small_scale_valid 0 "1 frame slid" --patch $P "$tmp/milli.obj" "$tmp/milli.0001.obj"
+expect small_scale_valid_paper 0 "1 frame slid" --method paper --patch $P "$tmp/milli.obj" "$tmp/milli.0001.obj"
 expect degenerate_bind_zero_length_edge_paper 0 "sliding vertices" --method paper --patch $P "$tmp/zero_edge.obj" $F
 expect degenerate_bind_zero_area_paper 0 "sliding vertices" --method paper --patch $P "$tmp/sliver.obj" $F
 
@@ -609,7 +609,7 @@ expect frames_missing_keep_going 3 "998 frames slid, 2 failed" --keep-going \
   --patch $P $B "$tmp"/long/seq.0{001..999}.obj "$tmp/long/seq.1000.obj"
 first_bad=$(grep -n "seq.0300.obj: cannot read" "$tmp/stderr" | head -1 | cut -d: -f1)
 second_bad=$(grep -n "seq.0900.obj: cannot read" "$tmp/stderr" | head -1 | cut -d: -f1)
-bind_line=$(grep -n "1 patches, 4 sliding vertices" "$tmp/stderr" | cut -d: -f1)
+bind_line=$(grep -n "1 patch, 4 sliding vertices" "$tmp/stderr" | cut -d: -f1)
 if [ -z "$first_bad" ] || [ -z "$second_bad" ] || [ -z "$bind_line" ] ||
   [ "$second_bad" -gt "$bind_line" ] || [ "$(grep -c "cannot read" "$tmp/stderr")" -ne 2 ]; then
   fail "frames_missing_keep_going: the missing frames are not named once each before the bind's line"
@@ -633,7 +633,7 @@ cp $B "$tmp/rest.obj"
 expect frames_without_number 2 "--frames: $tmp/rest.obj has no frame number in its file name" --frames 1-10 --patch $P $B $F "$tmp/rest.obj"
 expect frames_bad_spec 2 "--frames: '10-1' runs backwards" --frames 10-1 --patch $P $B $F
 expect frames_none_selected 2 "--frames 5-9 selects none of the 2 frames (numbered 1 to 2)" --frames 5-9 --patch $P $B $F grid.0002.obj
-expect frames_clamped_valid 0 "1 frames slid" --frames 2-100 --patch $P $B $F grid.0002.obj
+expect frames_clamped_valid 0 "1 frame slid" --frames 2-100 --patch $P $B $F grid.0002.obj
 cp $F "$tmp/good.0001.obj"
 cp grid.0002.obj "$tmp/good.0003.obj"
 expect fail_fast_bad_frame 3 "nan.0001.obj:7: vertex coordinate 'nan' is not finite" -j 1 --patch $P $B "$tmp/nan.0001.obj" "$tmp/good.0001.obj"
@@ -649,6 +649,7 @@ expect window_paper 2 "--window: applies to --method elastic only, not to --meth
 expect window_not_a_number 2 "--window" --window two --patch $P $B $F
 expect window_too_wide 2 "--window" --window 101 --patch $P $B $F
 expect window_frame_without_number 2 "--window 1: $tmp/rest.obj has no frame number (name.0042.obj), and a window takes each frame's neighbours by their numbers" --window 1 --patch $P $B $F "$tmp/rest.obj"
+if grep -q "sliding vertices" "$tmp/stderr"; then fail "window_frame_without_number: told after the bind's set-up"; fi
 mkdir -p "$tmp/other"
 cp $F "$tmp/other/shot.0001.obj"
 expect window_one_number_twice 2 "are both frame 1: a window takes each frame's neighbours by their numbers" --window 1 --patch $P $B $F "$tmp/other/shot.0001.obj"
@@ -662,7 +663,7 @@ expect window_broken_neighbour 3 "win.0001.obj: its --window neighbour $tmp/win.
 ls "$tmp/out/window_broken_neighbour" 2>/dev/null | tr '\n' ' ' >"$tmp/written"
 [ "$(cat "$tmp/written")" = "win.0005.obj " ] || fail "window_broken_neighbour wrote: $(cat "$tmp/written")"
 # (win.0005's window, win.0003 and itself, costs it ten points: counted between the two.)
-grep -qE "1 frames slid( \([^)]*\))?, 3 failed" "$tmp/stderr" || fail "window_broken_neighbour: not '1 frames slid, 3 failed'"
+grep -qE "1 frame slid( \([^)]*\))?, 3 failed" "$tmp/stderr" || fail "window_broken_neighbour: not '1 frame slid, 3 failed'"
 # --window-ends without a window, another word, or with the paper method: usage errors. A loop's
 # windows wrap around: a broken frame 1 fails frame 5 too (beside it in the loop); frame 3 (its
 # neighbours 2 and 5) is written.
@@ -705,11 +706,11 @@ expect config_flag_negative_short_key 2 "flag_short.toml:2: key 'q': --quiet = -
 printf 'patch = ["all.txt"]\nno-slide =\n' >"$tmp/flag_empty.toml"
 expect config_flag_empty_value 2 "flag_empty.toml:2: key 'no-slide': --no-slide has an empty value: a flag takes true or false" --config "$tmp/flag_empty.toml" $B $F
 printf 'patch = ["all.txt"]\nkeep-going = Yes\nquiet = "false"\nrequire-converged = 0\nbind-is-frame = OFF\n' >"$tmp/flag_words.toml"
-expect config_flag_documented_forms_valid 0 "1 frames slid" --config "$tmp/flag_words.toml" $B $F
-expect config_flag_overridden_valid 0 "1 frames slid" --keep-going --config "$tmp/flag5.toml" $B $F
+expect config_flag_documented_forms_valid 0 "1 frame slid" --config "$tmp/flag_words.toml" $B $F
+expect config_flag_overridden_valid 0 "1 frame slid" --keep-going --config "$tmp/flag5.toml" $B $F
 # --quiet and --verbose exclude each other when both are on; a flag set off is no conflict.
 printf 'patch = ["all.txt"]\nquiet = false\n' >"$tmp/quiet_off.toml"
-expect config_quiet_off_beside_verbose_valid 0 "1 frames slid" -v --config "$tmp/quiet_off.toml" $B $F
+expect config_quiet_off_beside_verbose_valid 0 "1 frame slid" -v --config "$tmp/quiet_off.toml" $B $F
 printf 'patch = ["all.txt"]\nquiet = true\nverbose = true\n' >"$tmp/quiet_verbose.toml"
 # A conflict the file has a part in names its key and line (the first such key of the file).
 expect config_quiet_and_verbose 2 "quiet_verbose.toml:2: key 'quiet': --quiet excludes --verbose" --config "$tmp/quiet_verbose.toml" $B $F
@@ -718,8 +719,8 @@ expect config_verbose_beside_quiet 2 "verbose.toml:3: key 'verbose': --quiet exc
 expect quiet_and_verbose 2 "--quiet excludes --verbose" -q -v --patch $P $B $F
 # The same for the flags that need another option: off, they need nothing.
 printf 'patch = ["all.txt"]\nkeyframes = false\nreport-no-timings = off\n' >"$tmp/flags_off.toml"
-expect config_flags_off_need_nothing_valid 0 "1 frames slid" --config "$tmp/flags_off.toml" $B $F
-expect report_no_timings_off_valid 0 "1 frames slid" --report-no-timings=false --patch $P $B $F
+expect config_flags_off_need_nothing_valid 0 "1 frame slid" --config "$tmp/flags_off.toml" $B $F
+expect report_no_timings_off_valid 0 "1 frame slid" --report-no-timings=false --patch $P $B $F
 expect keyframes_without_animation 2 "--keyframes requires --animation" --keyframes --patch $P $B $F
 printf 'patch = ["all.txt"]\nreport-no-timings = on\n' >"$tmp/no_timings.toml"
 expect config_report_no_timings_without_report 2 "no_timings.toml:2: key 'report-no-timings': --report-no-timings requires --report" --config "$tmp/no_timings.toml" $B $F
@@ -732,7 +733,7 @@ expect config_value_not_a_word 2 "--density: papr not in {paper,inverse,length,u
 printf 'patch = ["all.txt"]\nmethod = "paper"\ntolerance = 0.1\n' >"$tmp/other.toml"
 expect config_other_methods_option 2 "other.toml:3: key 'tolerance': --tolerance: applies to --method elastic only, not to --method paper" --config "$tmp/other.toml" $B $F
 printf '# every key an option\npatch = ["all.txt"]\nkeep-going\n[default]\nstrength = 0.5\n' >"$tmp/good.toml"
-expect config_keys_all_options 0 "1 frames slid" --config "$tmp/good.toml" $B $F
+expect config_keys_all_options 0 "1 frame slid" --config "$tmp/good.toml" $B $F
 printf '\xEF\xBB\xBF' | cat - "$tmp/good.toml" >"$tmp/bom.toml"
 expect config_byte_order_mark 2 "bom.toml:1: the file starts with a UTF-8 byte-order mark" --config "$tmp/bom.toml" $B $F
 # A misspelt option on the command line: named, with the nearest, as a config file's key is.

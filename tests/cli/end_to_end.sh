@@ -96,12 +96,12 @@ done
 # the elastic relaxation's iterations and energy.
 "$bin" --patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/elbow.0003.obj -o "$tmp/log.elastic" 2>"$tmp/log.txt"
 check "the default log says elastic" bash -c "grep -q '288 sliding vertices (method elastic)' '$tmp/log.txt' &&
-  grep -qE 'elbow.0003.obj: 1 patches, elastic [0-9]+ it, energy left [0-9.]+%, flips 0, max slide' '$tmp/log.txt' &&
+  grep -qE 'elbow.0003.obj: 1 patch, elastic [0-9]+ it, energy left [0-9.]+%, flips 0, max slide' '$tmp/log.txt' &&
   ! grep -q fallbacks '$tmp/log.txt'"
 "$bin" --method paper --patch data/elbow/patch.txt data/elbow/bind.obj data/elbow/frames/elbow.0003.obj -o "$tmp/log.paper" 2>"$tmp/log.txt"
 check "the paper's log says its density, solver and fallbacks" bash -c "
   grep -q '288 sliding vertices (method paper, density inverse, holes fill)' '$tmp/log.txt' &&
-  grep -qE 'elbow.0003.obj: 1 patches, Cholesky, max slide [0-9.]+, 0 fallbacks' '$tmp/log.txt'"
+  grep -qE 'elbow.0003.obj: 1 patch, Cholesky, max slide [0-9.]+, 0 fallbacks' '$tmp/log.txt'"
 
 # Options of one method are refused with the other (usage error, naming the option, nothing
 # written); the elastic options run.

@@ -24,6 +24,12 @@ TEST(NumberFormat, DoublesComeOutShortestAndReadBackExactly) {
   EXPECT_EQ(format_double(-2.2250738585072014e-308), "-2.2250738585072014e-308");
 }
 
+TEST(NumberFormat, CountsTakeTheSingularForOneOnly) {
+  EXPECT_EQ(counted(1, "patch", "patches"), "1 patch");
+  EXPECT_EQ(counted(0, "patch", "patches"), "0 patches");
+  EXPECT_EQ(counted(2, "frame", "frames"), "2 frames");
+}
+
 TEST(NumberFormat, ParsingTakesWholeNumbersOnly) {
   EXPECT_EQ(parse_double("+1.5"), 1.5);
   EXPECT_EQ(parse_double("-2.5e3"), -2500.0);

@@ -190,7 +190,7 @@ TEST(Run, TellsTheBindEachChosenFrameAndWritesThem) {
   ASSERT_FALSE(told.log.empty());
   EXPECT_EQ(told.log[0].level, LogLevel::Info);
   EXPECT_EQ(told.log[0].text,
-            "skinslide: " + o.bind + ": 1 patches, 288 sliding vertices (method elastic)");
+            "skinslide: " + o.bind + ": 1 patch, 288 sliding vertices (method elastic)");
   EXPECT_EQ(told.log.back().level, LogLevel::Detail);
   EXPECT_EQ(told.log.back().text, "  2 frames, 2 at a time");
   EXPECT_EQ(told.begun, (std::vector<std::size_t>{2}));
@@ -204,7 +204,7 @@ TEST(Run, TellsTheBindEachChosenFrameAndWritesThem) {
     ASSERT_EQ(lines.size(), 2u);  // the frame, then its one patch
     const std::string out = dir / ("slid/elbow.000" + std::to_string(j + 2) + ".obj");
     EXPECT_EQ(lines[0].level, LogLevel::Info);
-    EXPECT_EQ(lines[0].text.rfind("skinslide: " + o.frames[j + 1] + ": 1 patches, elastic ", 0),
+    EXPECT_EQ(lines[0].text.rfind("skinslide: " + o.frames[j + 1] + ": 1 patch, elastic ", 0),
               0u);
     EXPECT_TRUE(lines[0].text.ends_with(" -> " + out)) << lines[0].text;
     EXPECT_EQ(lines[1].level, LogLevel::Detail);
