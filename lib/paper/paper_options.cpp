@@ -62,8 +62,6 @@ const OptionTable<PaperOptions>& option_table<PaperOptions>() {
   return table;
 }
 
-Density parse_density(const std::string& name) { return kDensity.value(name); }
-Holes parse_holes(const std::string& name) { return kHoles.value(name); }
 FrameSolver parse_frame_solver(const std::string& name) { return kFrameSolver.value(name); }
 Locate parse_locate(const std::string& name) { return kLocate.value(name); }
 std::string to_string(Density d) { return kDensity.name(d); }

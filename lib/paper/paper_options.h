@@ -58,8 +58,6 @@ struct PaperOptions {
 template <>
 const OptionTable<PaperOptions>& option_table<PaperOptions>();
 
-Density parse_density(const std::string& name);           ///< throws Usage on an unknown name
-Holes parse_holes(const std::string& name);               ///< throws Usage on an unknown name
 FrameSolver parse_frame_solver(const std::string& name);  ///< throws Usage on an unknown name
 Locate parse_locate(const std::string& name);             ///< throws Usage on an unknown name
 std::string to_string(Density d);
