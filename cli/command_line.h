@@ -1,8 +1,9 @@
 // The command line's options (README "Options"): declared for CLI11, checked, and turned into
-// the pipeline's RunOptions. The options of the library's tables (core/option.h: each method's,
-// the run's --method and --strength) are declared from them, with their names, ranges, words and
-// help; every default is the library's own (RunOptions, ElasticOptions, PaperOptions): the options
-// are bound straight into those structs, and --help shows them.
+// the pipeline's RunOptions. Every option is declared from the library's tables: the command's
+// (pipeline/command_options.h), which names the methods' and the run's (core/option.h), with
+// their names, kinds, ranges, words, help and groups; every default is the library's own
+// (RunOptions, ElasticOptions, PaperOptions): the options are bound straight into those structs,
+// and --help shows them.
 #pragma once
 
 #include <map>
@@ -12,16 +13,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "pipeline/command_options.h"
 #include "skinslide.h"
 
 namespace skinslide::cli {
 
-// The command line's options: bound straight into the library's structs, so their defaults are
-// the library's; the word options as the words given.
-struct CliOptions {
-  RunOptions run;
-  ElasticOptions elastic;
-  PaperOptions paper;
+// The command line's options: the command's table's members (pipeline/command_options.h), bound
+// straight into the library's structs, so their defaults are the library's; the word options as
+// the words given; and what the declarations leave to check_options.
+struct CliOptions : CommandOptions {
   /// The word options as given (--method, --density, ...), by name; run_options() sets them.
   std::map<std::string, std::string> words;
   /// Options one method alone takes, each with that method's name: refused with the other.
@@ -34,12 +34,15 @@ struct CliOptions {
     std::string word;
   };
   std::vector<Needs> needs;
-  RigOptions rig;          ///< --animation, --fps
-  bool has_rig = false;    ///< --animation given: the frames are BIND posed by its skin
-  bool keyframes = false;  ///< --keyframes: the default, spelled out
-  bool report_no_timings = false;
-  bool quiet = false;
-  bool verbose = false;
+  /// A flag's conflict (CommandOption::excludes, needs), checked by the flag's value: CLI11 counts
+  /// a flag given off (`--quiet=false`, `quiet = false` in a --config file) as given.
+  struct FlagRule {
+    std::string flag;   ///< "--keyframes"
+    std::string other;  ///< "--animation"
+    enum Kind { Needs, Excludes } kind;
+  };
+  std::vector<FlagRule> flag_rules;  ///< in the table's order
+  bool has_rig = false;              ///< --animation given: the frames are BIND posed by its skin
 };
 
 /// skinslide's description and version, for CLI::App.

@@ -72,9 +72,9 @@ int run_and_print(const cli::CliOptions& o) {
   if (verbosity != cli::Verbosity::Quiet || failed > 0)
     std::fprintf(stderr, "skinslide: %s %s%s%s in %.2f s -> %s\n",
                  counted(result.frames - failed, "frame", "frames").c_str(),
-                 o.run.no_slide ? "copied" : "slid", counts.c_str(),
+                 o.no_slide ? "copied" : "slid", counts.c_str(),
                  failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
-                 progress->elapsed_seconds(), o.run.output.c_str());
+                 progress->elapsed_seconds(), o.output.c_str());
   return failed ? exit_code(result.failures.front().kind()) : 0;
 }
 
