@@ -2,11 +2,13 @@
 // its help. The member's initialiser in its options struct is the default: a table reads it from
 // a default-constructed struct and never writes it again. Each method declares its tunables in a
 // table beside its options (elastic/elastic_options.h, paper/paper_options.h), the run its shared
-// options (pipeline/run_options.h). Every client reads the tables: the command line declares its
-// CLI11 options from them and refuses a method's options with the other method, the API checks
-// the ranges (skinslide.h check_options), the report lists a method's (pipeline/method.h), and
-// the Python module takes them as keyword arguments and lists them (option_specs), from which the
-// Blender add-on makes its properties. Adding an option is adding one entry to one table.
+// options (pipeline/run_options.h), the command its own (pipeline/command_options.h). Every
+// client reads the tables: the command line declares its CLI11 options from them and refuses a
+// method's options with the other method, the API checks the ranges (skinslide.h check_options)
+// and the bind's set-up every option's rule (check_rules), the report lists a method's
+// (pipeline/method.h), and the Python module takes them as keyword arguments and lists them
+// (option_specs), from which the Blender add-on makes its properties. Adding an option is adding
+// one entry to one table.
 #pragma once
 
 #include <array>
@@ -94,6 +96,10 @@ struct Option {
   /// it otherwise.
   const char* needs_option = nullptr;
   const char* needs_word = nullptr;
+  /// A rule of the option's value beyond its range, often against the other options' values
+  /// (--ease-in below --rotation-fits); none when null. check_rules() applies every table's.
+  /// \throw Error(Usage) naming the option when `options` break it.
+  void (*rule)(const Options& options) = nullptr;
 };
 
 /// The options of one options struct, in the order --help, the report and Python list them.
@@ -169,6 +175,15 @@ void check_ranges(const OptionTable<Options>& table, const Options& options) {
           }
         },
         option.value);
+}
+
+/// Applies every option's rule (Option::rule) to `options`, in the table's order: with
+/// check_ranges, every check of an options struct's values, each declared once in its entry.
+/// \throw Error(Usage) as the first rule broken.
+template <class Options>
+void check_rules(const OptionTable<Options>& table, const Options& options) {
+  for (const Option<Options>& option : table)
+    if (option.rule) option.rule(options);
 }
 
 }  // namespace skinslide

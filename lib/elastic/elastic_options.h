@@ -7,7 +7,9 @@
 
 namespace skinslide {
 
-/// --rotation-fits, --max-iterations, --tolerance, --convergence, --blend, --ease-in.
+/// --solver, --passes; the research options --rotation-fits, --max-iterations, --tolerance,
+/// --convergence, --blend (0, or 0.001 to 2: its rule) and --ease-in (below --rotation-fits: its
+/// rule; check_rules).
 template <>
 const OptionTable<ElasticOptions>& option_table<ElasticOptions>();
 

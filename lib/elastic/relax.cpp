@@ -33,11 +33,6 @@ constexpr int kMaxDirectionIterations = 128;
 // 0.22-0.96 on the twelve stress cases, at most 0.072 on the slow swings and CesiumMan's knees
 // (whose largest is 0.195).
 constexpr double kUnsolvedResidual = 0.1;
-// --blend's narrowest bands, in inradii: below it a band is thinner than round-off places a chart
-// point, and the blended surface's slopes overflow (measured on data/elbow: 1e-6 to 1 slide the
-// same within 0.001 of energy; 1e-17 kept 88% against 76%, and 1e-100 nothing, both read as
-// converged).
-constexpr double kMinBlend = 1e-3;
 
 // One patch's relaxation in one frame, in named phases: the rotations of a round
 // (fit_rotations), then steps: the Jacobians of the model, the direction (with holds where
@@ -338,14 +333,6 @@ double gain_left_at(const ElasticSetup& setup, const FrameSurface& surface, doub
 
 }  // namespace
 
-void check_elastic_options(const ElasticOptions& options) {
-  if (options.ease_in >= options.rotation_fits)
-    throw Error(ErrorKind::Usage, "--ease-in " + std::to_string(options.ease_in) +
-                                      " leaves no rotation fit that aims fully: give at most "
-                                      "--rotation-fits - 1 (--rotation-fits is " +
-                                      std::to_string(options.rotation_fits) + ")");
-}
-
 const char* stop_name(ElasticStop stop) {
   switch (stop) {
     case ElasticStop::AtRest:
@@ -376,11 +363,6 @@ ArapTriangles arap_triangles(const ElasticSetup& setup) {
 ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>& triangles,
                            const std::vector<std::vector<Index>>& loops, Index outer_loop,
                            const std::vector<Index>& movable, double blend) {
-  if (blend > 0 && blend < kMinBlend)
-    throw Error(ErrorKind::Usage, "--blend " + format_double(blend) +
-                                      ": bands this narrow are below round-off; use 0 (the facets) "
-                                      "or " +
-                                      format_double(kMinBlend) + " to 2");
   ElasticSetup setup;
   setup.chart = disk_chart(points, triangles, loops, outer_loop);
   if (blend > 0) setup.blend = surface_blend(setup.chart, blend);

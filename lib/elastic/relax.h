@@ -60,10 +60,6 @@ struct ElasticOptions {
   int ease_in = 0;
 };
 
-/// \throw Error(Usage) for options that no relaxation can honour together (--ease-in that leaves
-/// no full rotation fit).
-void check_elastic_options(const ElasticOptions& options);
-
 /// Bind-time precompute of one patch: plain data, immutable once built, shared by every frame.
 struct ElasticSetup {
   Chart chart;

@@ -237,7 +237,8 @@ BindSetup bind_setup(const PolyMesh& bind, const std::vector<std::vector<Index>>
                      const SlideOptions& options, const SlideControls& controls,
                      const FaceNamer& name_face, unsigned threads,
                      const SelectionNamer& name_selection) {
-  if (const auto* elastic = std::get_if<ElasticOptions>(&options)) check_elastic_options(*elastic);
+  std::visit([](const auto& o) { check_rules(option_table<std::decay_t<decltype(o)>>(), o); },
+             options);
   const FaceNamer namer =
       name_face ? name_face : [](Index f) { return "face " + std::to_string(f); };
   BindSetup setup;

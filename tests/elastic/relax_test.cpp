@@ -142,7 +142,7 @@ TEST(ElasticSlide, EaseInMustLeaveAFitThatAimsFully) {
   ElasticOptions o;
   o.rotation_fits = 3;
   o.ease_in = 2;
-  EXPECT_NO_THROW(check_elastic_options(o));
+  EXPECT_NO_THROW(check_rules(option_table<ElasticOptions>(), o));
   o.ease_in = 3;
   try {
     bind_setup(mesh, {test::all_faces(mesh)}, o);
