@@ -1,14 +1,14 @@
-// One declaration per option (STYLE §7): its name, the member it sets, its range or its words and
-// its help. The member's initialiser in its options struct is the default: a table reads it from
-// a default-constructed struct and never writes it again. Each method declares its tunables in a
-// table beside its options (elastic/elastic_options.h, paper/paper_options.h), the run its shared
-// options (pipeline/run_options.h), the command its own (pipeline/command_options.h). Every
-// client reads the tables: the command line declares its CLI11 options from them and refuses a
-// method's options with the other method, the API checks the ranges (skinslide.h check_options)
-// and the bind's set-up every option's rule (check_rules), the report lists a method's
-// (pipeline/method.h), and the Python module takes them as keyword arguments and lists them
-// (option_specs), from which the Blender add-on makes its properties. Adding an option is adding
-// one entry to one table.
+// One declaration per option, used by the command, the API, Python and Blender: its name, the
+// member it sets, its range or its words and its help. The member's initialiser in its options
+// struct is the default: a table reads it from a default-constructed struct and never writes it
+// again. Each method declares its tunables in a table beside its options
+// (elastic/elastic_options.h, paper/paper_options.h), the run its shared options
+// (pipeline/run_options.h), the command its own (pipeline/command_options.h). Every client reads
+// the tables: the command line declares its CLI11 options from them and refuses a method's options
+// with the other method, the API checks the ranges (skinslide.h check_options) and the bind's
+// set-up every option's rule (check_rules), the report lists a method's (pipeline/method.h), and
+// the Python module takes them as keyword arguments and lists them (option_specs), from which the
+// Blender add-on makes its properties. Adding an option is adding one entry to one table.
 #pragma once
 
 #include <array>

@@ -182,8 +182,9 @@ std::map<int, int> store_edits(tinygltf::Model& model, const GltfDocument& doc,
   return moved;
 }
 
-// Serialises `model` to memory and writes it atomically: never a partial file (STYLE.md
-// section 7). `.glb` gives a GLB; anything else a .gltf with one .bin per buffer beside it.
+// Serialises `model` to memory and writes it atomically: never a partial file
+// (io/atomic_write.h). `.glb` gives a GLB; anything else a .gltf with one .bin per buffer beside
+// it.
 void write_model(tinygltf::Model model, const std::string& source_path,
                  const std::string& out_path) {
   const bool binary = has_glb_extension(out_path);

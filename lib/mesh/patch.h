@@ -1,5 +1,5 @@
-// One patch prepared for sliding: what both methods start from (STYLE "two methods, one
-// set-up"). Built once at bind time by pipeline/bind_setup, immutable afterwards.
+// One patch prepared for sliding: what both methods start from (two methods,
+// one set-up). Built once at bind time by pipeline/bind_setup, immutable afterwards.
 #pragma once
 
 #include <array>

@@ -21,7 +21,7 @@ from topology import Refusal, patch_components
 # Elastic's per-patch `stop` says why a patch's last round ended. The names grow with the method
 # (lib/elastic/README.md), so any short lowercase name is taken; "converged" is one of them.
 STOP_NAME = re.compile(r"[a-z][a-z0-9 _-]{0,39}\Z")
-ON_SURFACE = 1e-9  # of the frame's bounding-box diagonal (STYLE 5)
+ON_SURFACE = 1e-9  # of the frame's bounding-box diagonal (README "What it does": every slid vertex on a frame triangle)
 F32 = 2.0 ** -24   # float32 rounding, relative
 
 
