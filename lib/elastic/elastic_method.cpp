@@ -86,6 +86,10 @@ std::string convergence_text(const ElasticReport& r) {
 // (the ICT face, --window 2) pass it by 17-74 points in every frame.
 constexpr double kWindowCostTold = 0.1;
 
+bool window_mean_costly(double before, double after, double own) {
+  return before > 0 && after - own > kWindowCostTold * before;
+}
+
 std::string frame_summary(const std::vector<Patch>& patches,
                           const std::function<const ElasticReport&(std::size_t)>& report,
                           const std::string& max_slide) {
@@ -113,7 +117,7 @@ std::string frame_summary(const std::vector<Patch>& patches,
   // apart to share one (a fast motion, a sequence's end, separate poses): said, not left to the
   // energy figure alone.
   const std::string window_cost =
-      before > 0 && after - own > kWindowCostTold * before
+      window_mean_costly(before, after, own)
           ? ", " + log_number(100 * own / before) +
                 "% without the window (its frames differ too much to share a mean)"
           : std::string();

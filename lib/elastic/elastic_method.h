@@ -61,10 +61,16 @@ struct ElasticTotals {
   Figures figures() const;
 };
 
+/// Whether a frame's --window mean costs it ten points of its energy or more: `after`, the energy
+/// written, is above `own`, its own slides' energy, by more than a tenth of `before`, the frame's
+/// energy (sums over the frame's free patches). The one threshold of the frame's line ("X% without
+/// the window", frame_summary) and of the run's count of costly frames (pipeline/log_lines.h).
+bool window_mean_costly(double before, double after, double own);
+
 /// A frame's log summary: the most steps of any patch, the energy left as a share of the frame's,
 /// the flips, `max_slide` (", max slide X") among them, the vertices written at their own slide
 /// instead of --window's mean (when any), and the energy left without the window where its mean
-/// costs ten points or more (kWindowCostTold). `report(p)`: patch p's report.
+/// costs ten points or more (window_mean_costly). `report(p)`: patch p's report.
 std::string frame_summary(const std::vector<Patch>& patches,
                           const std::function<const ElasticReport&(std::size_t)>& report,
                           const std::string& max_slide);

@@ -10,11 +10,6 @@ namespace {
 
 constexpr const char* kAtRest = "at rest (the bind to float32 precision), unchanged";
 
-// The share of a frame's energy its window's mean may keep above its own slide before the frame
-// counts as costly: the ten points its line tells (elastic_method.cpp kWindowCostTold; the tests
-// hold the two to one threshold).
-constexpr double kWindowCostCounted = 0.1;
-
 // A frame's line has figures when some patch slides and not every one is at rest.
 bool has_figures(const BindSetup& setup, const std::vector<PatchFrameReport>& patches) {
   bool any_free = false, all_at_rest = true;
@@ -38,7 +33,7 @@ bool window_costly(const BindSetup& setup, const std::vector<PatchFrameReport>& 
     after += r->energy_after;
     own += r->energy_own;
   }
-  return before > 0 && after - own > kWindowCostCounted * before;
+  return window_mean_costly(before, after, own);
 }
 
 std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& result,

@@ -28,7 +28,7 @@ std::vector<LogLine> frame_lines(const BindSetup& setup, const FrameResult& resu
                                  const std::string& frame_path, const std::string& out_path);
 
 /// True when --window's mean costs the frame ten points of its energy or more: its line says
-/// "X% without the window" (elastic/elastic_method.h frame_summary, its kWindowCostTold), on
+/// "X% without the window" (elastic/elastic_method.h frame_summary, its window_mean_costly), on
 /// the same sums over the frame's patches (`patches`, parallel to setup.patches), and a frame of
 /// skipped patches or at rest has no such line. Never without a window (its mean is the frame's
 /// own slide) nor with the paper method.
