@@ -430,9 +430,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     smooth_map(setup, surface, SmoothMapRun{options.passes}, result);
     const double tolerance = options.convergence * result.energy_before;
     result.gain_left = gain_left_at(setup, surface, s, result, tolerance);
-    result.stop = result.gain_left <= tolerance
-                      ? ElasticStop::Converged
-                      : ElasticStop::Passes;
+    result.stop = result.gain_left <= tolerance ? ElasticStop::Converged : ElasticStop::Passes;
     for (Index i = 0; i < m; ++i)
       if (!result.position[i].allFinite())
         throw Error(ErrorKind::Numeric, "patch vertex " + std::to_string(setup.movable[i]) +

@@ -123,8 +123,7 @@ Positions2 map_step(const ElasticMetric& metric, const std::vector<TangentFrame>
   work.motion.resize(m);
   for (Index i = 0; i < m; ++i) r[i] = -(frames[i].Q.transpose() * gradient[i]);
   done += conjugate_gradients(
-      work, iterations,
-      [&](Positions2& z) { cholesky_solve(metric.factor, z, work.permuted); },
+      work, iterations, [&](Positions2& z) { cholesky_solve(metric.factor, z, work.permuted); },
       [&](const Positions2& p, Positions2& Ap) {
         apply_damped(metric, frames, damping, p, work.motion, Ap);
       },

@@ -204,8 +204,7 @@ TEST(Run, TellsTheBindEachChosenFrameAndWritesThem) {
     ASSERT_EQ(lines.size(), 2u);  // the frame, then its one patch
     const std::string out = dir / ("slid/elbow.000" + std::to_string(j + 2) + ".obj");
     EXPECT_EQ(lines[0].level, LogLevel::Info);
-    EXPECT_EQ(lines[0].text.rfind("skinslide: " + o.frames[j + 1] + ": 1 patch, elastic ", 0),
-              0u);
+    EXPECT_EQ(lines[0].text.rfind("skinslide: " + o.frames[j + 1] + ": 1 patch, elastic ", 0), 0u);
     EXPECT_TRUE(lines[0].text.ends_with(" -> " + out)) << lines[0].text;
     EXPECT_EQ(lines[1].level, LogLevel::Detail);
     EXPECT_EQ(lines[1].text.rfind("  patch 0: elastic ", 0), 0u) << lines[1].text;
