@@ -65,8 +65,8 @@ std::optional<LogLine> run_window_line(const RunOptions& o, const FrameSource& s
 // --window's relaxations of the run's frames, shared by the frame loop's threads; null without
 // a window (or without a slide).
 std::unique_ptr<RelaxationStore> relaxation_store(const RunOptions& o, const BindSetup& setup,
-                                                  const MeshFile& bind, const FrameSource& source) {
-  const std::optional<WindowPlan> plan = run_window_plan(o, source);
+                                                  const MeshFile& bind, const FrameSource& source,
+                                                  const std::optional<WindowPlan>& plan) {
   if (!plan) return nullptr;
   return std::make_unique<RelaxationStore>(*plan, source.plan.chosen, [&, o](size_t i) {
     return relax_source_frame(setup, bind, source, o, i);
@@ -91,16 +91,15 @@ struct RunCounts {
 };
 
 // The frame loop: the chosen frames on `threads` threads, each a pure function of its frame (and
-// with --window of its window's relaxations); per chosen frame its error in `errors`, if it
-// failed. Stops at the first failure unless --keep-going. `errors` comes holding the frames
+// with --window of its window's relaxations, from `store`); per chosen frame its error in `errors`,
+// if it failed. Stops at the first failure unless --keep-going. `errors` comes holding the frames
 // already known to fail (a FRAME file that cannot be read, under --keep-going): they are told as
 // failed, not read.
 void slide_frames(const RunOptions& o, const RunEvents& events, const BindSetup& setup,
-                  const MeshFile& bind, const FrameSource& source, CacheWriter* cache_out,
-                  unsigned threads, RunReport& report, RunCounts& counts,
+                  const MeshFile& bind, const FrameSource& source, RelaxationStore* store,
+                  CacheWriter* cache_out, unsigned threads, RunReport& report, RunCounts& counts,
                   std::vector<std::unique_ptr<Error>>& errors) {
   const std::vector<size_t>& chosen = source.plan.chosen;
-  const std::unique_ptr<RelaxationStore> store = relaxation_store(o, setup, bind, source);
   const size_t count = chosen.size();
   const auto done = [&](size_t j, std::vector<LogLine> lines) {
     if (events.frame_done) events.frame_done(j, std::move(lines));
@@ -120,8 +119,7 @@ void slide_frames(const RunOptions& o, const RunEvents& events, const BindSetup&
       const CacheSlot slot{cache_out, j};  // the chosen frames are one run of samples
       try {
         ReportFrame* record = o.report.empty() ? nullptr : &report.frames[j];
-        FrameOutcome outcome =
-            run_chosen_frame(setup, bind, source, o, i, slot, record, store.get());
+        FrameOutcome outcome = run_chosen_frame(setup, bind, source, o, i, slot, record, store);
         if (store) store->done(i);
         if (!outcome.converged) ++counts.not_converged;
         if (outcome.window_costly) ++counts.window_costly;
@@ -232,8 +230,7 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
                        threads, [&](Index s) { return "--patch " + o.patches[s]; });
   report.bind_seconds = seconds_since(t_run);
   for (const LogLine& line : bind_lines(o, setup, controls)) log(line);
-  if (const std::optional<LogLine> line = run_window_line(o, source, window_plan))
-    log(*line);
+  if (const std::optional<LogLine> line = run_window_line(o, source, window_plan)) log(*line);
   make_output_dir(plan.folder);
   if (!o.dump_dir.empty())
     write_bind_dumps(o.dump_dir, o.bind, setup, bind.mesh.positions,
@@ -251,7 +248,10 @@ RunResult run(const RunOptions& given, const RunEvents& events) {
                              (o.threads == 0 ? " (-j 0: the cores this task may use)" : "")});
   if (events.frames_begin) events.frames_begin(count);
   RunCounts counts;
-  slide_frames(o, events, setup, bind, source, cache_out.get(), threads, report, counts, errors);
+  const std::unique_ptr<RelaxationStore> store =
+      relaxation_store(o, setup, bind, source, window_plan);
+  slide_frames(o, events, setup, bind, source, store.get(), cache_out.get(), threads, report,
+               counts, errors);
   if (events.frames_end) events.frames_end();
   // A cache has no holes: it appears only when every chosen frame is in it.
   const bool all_written =
