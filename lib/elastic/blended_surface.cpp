@@ -298,4 +298,8 @@ Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* j
   return x;
 }
 
+Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u) {
+  return surface.blend ? blended_point(surface, where.triangle, u) : surface_point(surface, where);
+}
+
 }  // namespace skinslide

@@ -21,40 +21,13 @@
 // what the relaxation gained: tests/bench/elastic.md "Slivers under the blend".
 #pragma once
 
-#include <array>
-#include <cmath>
-#include <vector>
-
 #include "core/types.h"
 #include "elastic/arap.h"
 #include "elastic/chart.h"
+#include "elastic/surface_blend.h"
+#include "elastic/surface_map.h"
 
 namespace skinslide {
-
-struct FrameSurface;
-
-/// One patch triangle's edges in the chart, edge k opposite corner k: the inward unit normal of
-/// its line and its offset (u's signed distance from the line is normal . u - offset, positive
-/// inside), and its blend half-width (0: the patch's border or a hole's, not blended).
-struct BlendEdges {
-  std::array<Vec2, 3> normal;
-  std::array<double, 3> offset;
-  std::array<double, 3> width;
-  /// How far from the triangle its weight reaches: it fades from 1 at distance reach / 2 to 0 at
-  /// `reach`, the distance of the nearest node the bands would reach that is not its corner
-  /// (infinite: no such node, no fade).
-  double reach = INFINITY;
-};
-
-/// Bind-time data of the blend over one chart: plain data, read-only afterwards.
-struct SurfaceBlend {
-  std::vector<BlendEdges> edges;  ///< per patch triangle
-  /// CSR per patch triangle t: the patch triangles whose weight may be non-zero on t, t first.
-  std::vector<Index> around_start;
-  std::vector<Index> around;
-  /// Per patch triangle the box (lo x, lo y, hi x, hi y) of where its weight is not zero.
-  std::vector<std::array<double, 4>> support;
-};
 
 /// \param width_share each edge's blend half-width over the smaller inradius (in the chart) of
 /// the two triangles that share it (--blend; > 0), and at most 3x that share of the smallest
@@ -66,5 +39,9 @@ SurfaceBlend surface_blend(const Chart& chart, double width_share);
 /// dPhi_b/du (3x2) in `jacobian` when not null. `surface` must have a blend (and its facets'
 /// planes: frame_surface).
 Vec3 blended_point(const FrameSurface& surface, Index t, const Vec2& u, Mat32* jacobian = nullptr);
+
+/// Where the relaxation sees a point at chart point u (on `where`): on the blended surface, or on
+/// Phi without a blend.
+Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u);
 
 }  // namespace skinslide

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "core/check.h"
+#include "elastic/blended_surface.h"
 #include "mesh/measures.h"
 
 namespace skinslide {

@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 
+#include "elastic/blended_surface.h"
+
 namespace skinslide {
 namespace {
 

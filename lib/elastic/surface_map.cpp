@@ -57,10 +57,6 @@ Vec3 facet_point(const Chart& chart, const Positions3& frame, const ChartPoint& 
   return p.weight[0] * frame[tri[0]] + p.weight[1] * frame[tri[1]] + p.weight[2] * frame[tri[2]];
 }
 
-Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u) {
-  return surface.blend ? blended_point(surface, where.triangle, u) : surface_point(surface, where);
-}
-
 ChartPoint at_node(const Chart& chart, Index v) {
   const Index t = chart.corner_triangles[chart.corner_start[v]];
   ChartPoint p{t, {0, 0, 0}};

@@ -10,8 +10,8 @@
 
 #include "core/types.h"
 #include "elastic/arap.h"
-#include "elastic/blended_surface.h"
 #include "elastic/chart.h"
+#include "elastic/surface_blend.h"
 
 namespace skinslide {
 
@@ -43,10 +43,6 @@ Vec3 surface_point(const FrameSurface& surface, const ChartPoint& p);
 /// The same point from the chart and the frame's positions alone (local ids), without a
 /// FrameSurface: where a slid vertex is written.
 Vec3 facet_point(const Chart& chart, const Positions3& frame, const ChartPoint& p);
-
-/// Where the relaxation sees a point at chart point u (on `where`): on the blended surface, or on
-/// Phi without a blend.
-Vec3 relaxed_point(const FrameSurface& surface, const ChartPoint& where, const Vec2& u);
 
 /// A point exactly at its chart node v: on a patch triangle around it.
 ChartPoint at_node(const Chart& chart, Index v);
