@@ -27,7 +27,7 @@ for t in "${targets[@]}"; do
   case $t in
     obj) files=(lib/io/obj_read.cpp lib/io/obj_rewrite.cpp lib/core/number_format.cpp) ;;
     patch) files=(lib/io/patch_file.cpp) ;;
-    gltf) files=(lib/io/gltf_read.cpp lib/io/gltf_accessor.cpp) ;;
+    gltf) files=(lib/io/gltf/gltf_read.cpp lib/io/gltf/gltf_accessor.cpp) ;;
     pc2 | mdd) files=(lib/io/point_cache.cpp lib/io/cache_chunks.cpp) ;;
     *) echo "fuzz_coverage.sh: unknown target '$t' (obj, patch, gltf, pc2, mdd)" >&2; exit 2 ;;
   esac

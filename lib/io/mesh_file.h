@@ -11,13 +11,13 @@
 namespace skinslide {
 
 struct ObjText;       // io/obj_read.h
-struct GltfDocument;  // io/gltf.h
+struct GltfDocument;  // io/gltf/gltf.h
 
 enum class MeshFormat { Obj, Gltf, Glb };
 
 /// How to read a mesh file: which mesh of a multi-mesh glTF (`--mesh`; empty = the only one),
 /// and the trees a glTF's buffers may be read from besides its own folder
-/// (`--allow-uri-outside`, io/gltf_uri.h; empty = its folder only).
+/// (`--allow-uri-outside`, io/gltf/gltf_uri.h; empty = its folder only).
 struct MeshReadOptions {
   std::string mesh;
   std::vector<std::string> allow_uri_outside = {};  // "= {}": `{mesh}` alone does not warn

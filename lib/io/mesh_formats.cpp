@@ -2,7 +2,7 @@
 
 #include "core/error.h"
 #include "core/file_extension.h"
-#include "io/gltf.h"
+#include "io/gltf/gltf.h"
 #include "io/obj_read.h"
 #include "io/obj_rewrite.h"
 

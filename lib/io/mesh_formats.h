@@ -1,6 +1,6 @@
 // Mesh files in and out, whatever the format (.obj, .gltf, .glb, told by the extension): the entry
 // points of the run and the Python module. Each format's own reader and writer: io/obj_read.h,
-// io/obj_rewrite.h, io/gltf.h.
+// io/obj_rewrite.h, io/gltf/gltf.h.
 #pragma once
 
 #include <string>

@@ -7,7 +7,7 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "io/cache_chunks.h"
-#include "io/gltf.h"
+#include "io/gltf/gltf.h"
 #include "pipeline/frame_ranges.h"
 
 namespace skinslide {

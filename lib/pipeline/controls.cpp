@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "core/number_format.h"
-#include "io/gltf_weights.h"
+#include "io/gltf/gltf_weights.h"
 #include "io/vertex_list.h"
 
 namespace skinslide {

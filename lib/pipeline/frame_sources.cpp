@@ -6,7 +6,7 @@
 #include "core/number_format.h"
 #include "core/stopwatch.h"
 #include "io/atomic_write.h"
-#include "io/gltf.h"
+#include "io/gltf/gltf.h"
 #include "io/mesh_formats.h"
 #include "io/obj_rewrite.h"
 #include "io/obj_write.h"

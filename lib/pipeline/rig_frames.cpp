@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "core/check.h"
-#include "io/gltf.h"
-#include "io/gltf_rig.h"
+#include "io/gltf/gltf.h"
+#include "io/gltf/gltf_rig.h"
 #include "pose/animation.h"
 #include "pose/skinning.h"
 

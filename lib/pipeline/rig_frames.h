@@ -32,7 +32,7 @@ RigClip rig_clip(const MeshFile& character, const RigOptions& options);
 
 /// Frame `k` of the clip: `character` posed at times[k] (morph targets, then linear blend
 /// skinning or the mesh node's transform), expressed in the mesh node's space at rest
-/// (pose/skinning.h node_space_pose_at), as a static glTF document (io/gltf.h posed_gltf_file)
+/// (pose/skinning.h node_space_pose_at), as a static glTF document (io/gltf/gltf.h posed_gltf_file)
 /// whose `mesh` has the bind's faces. Pure: frames may be made in parallel.
 MeshFile rig_frame(const MeshFile& character, const RigClip& clip, std::size_t k);
 

@@ -14,7 +14,7 @@
 #include "core/cores.h"
 #include "core/stopwatch.h"
 #include "io/atomic_write.h"
-#include "io/gltf.h"
+#include "io/gltf/gltf.h"
 #include "io/mesh_formats.h"
 #include "io/patch_file.h"
 #include "io/run_inputs.h"

@@ -1,5 +1,5 @@
 // An animated character as plain data: node hierarchy, one skin (or none), per-vertex influences,
-// morph targets and animation clips. Filled from glTF by io/gltf_rig.h; posed by
+// morph targets and animation clips. Filled from glTF by io/gltf/gltf_rig.h; posed by
 // pose/animation.h and pose/skinning.h. Conventions are glTF 2.0's (section 3.7.2.2 morph
 // targets, 3.7.3 skins, 3.11 animations).
 #pragma once

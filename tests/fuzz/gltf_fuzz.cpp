@@ -4,7 +4,7 @@
 // asset/inside.bin (one triangle's positions, 36 bytes), and outside it secret.bin (36 bytes too,
 // so that a read reaching it would succeed) and a symbolic link asset/up -> the private folder.
 // Any input either reads or throws skinslide::Error; a mesh read has every face index in range,
-// finite positions, and was read from no file outside asset/ (io/gltf_uri.h).
+// finite positions, and was read from no file outside asset/ (io/gltf/gltf_uri.h).
 
 #include <unistd.h>
 
@@ -16,8 +16,8 @@
 #include <string>
 
 #include "core/error.h"
-#include "io/gltf.h"
-#include "io/gltf_document.h"
+#include "io/gltf/gltf.h"
+#include "io/gltf/gltf_document.h"
 
 using namespace skinslide;
 

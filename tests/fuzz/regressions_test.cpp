@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/gltf.h"
+#include "io/gltf/gltf.h"
 #include "io/obj_read.h"
 #include "io/obj_rewrite.h"
 #include "io/patch_file.h"

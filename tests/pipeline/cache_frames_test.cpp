@@ -17,7 +17,7 @@
 #include "helpers/temp_dir.h"
 #include "io/atomic_write.h"
 #include "io/cache_chunks.h"
-#include "io/gltf.h"
+#include "io/gltf/gltf.h"
 #include "io/mesh_formats.h"
 #include "io/obj_read.h"
 #include "io/obj_rewrite.h"
@@ -248,7 +248,7 @@ TEST(CacheFrames, AnimationWritesACache) {
   const test::TempDir dir("rig_cache");
   std::ofstream(dir / "patch.txt") << "0-1\n";
   RunOptions o;
-  o.bind = test::source_path("tests/io/gltf_morph/skinned_morph.gltf");
+  o.bind = test::source_path("tests/io/gltf/gltf_morph/skinned_morph.gltf");
   o.patches = {dir / "patch.txt"};
   o.rig = RigOptions{};
   o.output = dir / "out";

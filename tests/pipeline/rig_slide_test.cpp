@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "io/atomic_write.h"
-#include "io/gltf.h"
-#include "io/gltf_rig.h"
-#include "io/gltf_test_util.h"
+#include "io/gltf/gltf.h"
+#include "io/gltf/gltf_rig.h"
+#include "io/gltf/gltf_test_util.h"
 #include "pipeline/bind_setup.h"
 #include "pipeline/rig_frames.h"
 #include "pipeline/slide_frame.h"

@@ -1,5 +1,5 @@
-// Writing glTF 2.0: a document read by io/gltf_read.h written back with the slid vertices moved,
-// and the static copies (a posed character, a bind at a point cache's positions) that are
+// Writing glTF 2.0: a document read by io/gltf/gltf_read.h written back with the slid vertices
+// moved, and the static copies (a posed character, a bind at a point cache's positions) that are
 // written the same way. This header does not expose tinygltf.
 #pragma once
 

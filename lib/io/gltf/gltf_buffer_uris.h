@@ -1,5 +1,5 @@
 // What is read of a glTF's JSON before tinygltf loads anything: the buffers' URIs, so that each
-// is checked (io/gltf_uri.h) before a byte of it is read, and the integer properties tinygltf
+// is checked (io/gltf/gltf_uri.h) before a byte of it is read, and the integer properties tinygltf
 // would read as absent when they are not whole numbers. Internal to io/.
 #pragma once
 

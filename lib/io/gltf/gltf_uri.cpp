@@ -1,10 +1,10 @@
-#include "io/gltf_uri.h"
+#include "io/gltf/gltf_uri.h"
 
 #include <cctype>
 #include <fstream>
 
 #include "core/error.h"
-#include "io/gltf_buffer_uris.h"
+#include "io/gltf/gltf_buffer_uris.h"
 #include "io/run_inputs.h"
 
 namespace skinslide {

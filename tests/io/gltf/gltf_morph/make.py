@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes the small glTF files of tests/io/gltf_morph_test.cpp (JSON with a base64 data-URI
+"""Writes the small glTF files of tests/io/gltf/gltf_morph_test.cpp (JSON with a base64 data-URI
 buffer): every number is listed below, the expected poses are worked out by hand in the test.
 Run it from anywhere; it rewrites the .gltf files beside itself. Standard library only.
 
@@ -105,7 +105,7 @@ class Gltf:
         return self.floats(t, bounds=True)
 
     def document(self, rest):
-        doc = {"asset": {"version": "2.0", "generator": "skinslide tests/io/gltf_morph/make.py"}}
+        doc = {"asset": {"version": "2.0", "generator": "skinslide tests/io/gltf/gltf_morph/make.py"}}
         doc.update(rest)
         doc["buffers"] = [{"byteLength": len(self.buf), "uri": "data:application/octet-stream;base64,"
                            + base64.b64encode(bytes(self.buf)).decode()}]

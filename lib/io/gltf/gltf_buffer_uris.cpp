@@ -1,4 +1,4 @@
-#include "io/gltf_buffer_uris.h"
+#include "io/gltf/gltf_buffer_uris.h"
 
 #include <cstdint>
 
@@ -7,7 +7,7 @@ namespace {
 
 // A strict RFC 8259 reader that keeps only the buffers' URIs. It need not agree with tinygltf's
 // parser (nlohmann::json) on every odd document: a URI it misses is a file never approved, which
-// the reader's callbacks then refuse to open (io/gltf_uri.h). Recursive, depth-bounded.
+// the reader's callbacks then refuse to open (io/gltf/gltf_uri.h). Recursive, depth-bounded.
 struct Scan {
   std::string_view s;
   std::size_t i = 0;

@@ -1,4 +1,4 @@
-#include "io/gltf.h"
+#include "io/gltf/gltf.h"
 
 #include <cmath>
 #include <cstring>
@@ -12,9 +12,9 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/gltf_accessor.h"
-#include "io/gltf_document.h"
-#include "io/gltf_test_util.h"
+#include "io/gltf/gltf_accessor.h"
+#include "io/gltf/gltf_document.h"
+#include "io/gltf/gltf_test_util.h"
 
 namespace skinslide {
 namespace {

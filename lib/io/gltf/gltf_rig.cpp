@@ -1,4 +1,4 @@
-#include "io/gltf_rig.h"
+#include "io/gltf/gltf_rig.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,8 +6,8 @@
 #include <cstdio>
 
 #include "core/error.h"
-#include "io/gltf_accessor.h"
-#include "io/gltf_document.h"
+#include "io/gltf/gltf_accessor.h"
+#include "io/gltf/gltf_document.h"
 
 namespace skinslide {
 namespace {

@@ -1,6 +1,7 @@
 // Reading glTF 2.0 (.gltf + .bin / data URIs, and .glb): the surface skinslide slides, and the
-// document kept so that a slid copy can be written (io/gltf_write.h). This header does not
-// expose tinygltf (GltfDocument is defined in io/gltf_document.h, included by io/*.cpp only).
+// document kept so that a slid copy can be written (io/gltf/gltf_write.h). This header does not
+// expose tinygltf (GltfDocument is defined in io/gltf/gltf_document.h, included by io/gltf/*.cpp
+// only).
 //
 // The surface (README "glTF"): all triangle primitives (TRIANGLES, TRIANGLE_STRIP and
 // TRIANGLE_FAN, expanded to triangles as the spec orders them) of one mesh, in primitive order;
@@ -8,7 +9,7 @@
 // that order, so patch files count triangles. Raw vertices (the elements of each primitive's
 // POSITION accessor, primitives concatenated) are welded by exact position for connectivity:
 // welded vertex ids follow the first raw vertex at each position. Morph targets are not applied
-// here (the base POSITION is the surface; io/gltf_rig and pose/ apply them with --animation).
+// here (the base POSITION is the surface; io/gltf/gltf_rig and pose/ apply them with --animation).
 #pragma once
 
 #include <string>
@@ -23,7 +24,7 @@ namespace skinslide {
 /// `options.mesh`: empty = the only mesh; else a mesh name, or failing that an index.
 /// Sparse accessors, normalized and quantized (KHR_mesh_quantization) attributes, interleaved
 /// buffer views and external or data-URI buffers are read. External buffers are read only from
-/// inside the file's folder or a tree of `options.allow_uri_outside` (io/gltf_uri.h), each URI
+/// inside the file's folder or a tree of `options.allow_uri_outside` (io/gltf/gltf_uri.h), each URI
 /// judged before any file is opened. Images are neither decoded nor opened.
 /// \throw Error(Input) naming the path (and mesh, primitive, accessor) on anything malformed or
 ///        unsupported: Draco or meshopt compression, no triangle, a missing POSITION, an index or

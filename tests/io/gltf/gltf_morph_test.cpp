@@ -1,6 +1,6 @@
-// Morph targets with --animation: hand-made files (tests/io/gltf_morph/, their contents listed in
-// make.py there) read by io/gltf_rig and posed by pose/, each expected pose worked out by hand
-// from glTF 2.0 sections 3.7.2.2 (morph targets), 3.11 and Appendix C (interpolation).
+// Morph targets with --animation: hand-made files (tests/io/gltf/gltf_morph/, their contents listed
+// in make.py there) read by io/gltf/gltf_rig and posed by pose/, each expected pose worked out by
+// hand from glTF 2.0 sections 3.7.2.2 (morph targets), 3.11 and Appendix C (interpolation).
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -9,10 +9,10 @@
 #include <tiny_gltf.h>
 
 #include "core/error.h"
-#include "io/gltf.h"
-#include "io/gltf_document.h"
-#include "io/gltf_rig.h"
-#include "io/gltf_test_util.h"
+#include "io/gltf/gltf.h"
+#include "io/gltf/gltf_document.h"
+#include "io/gltf/gltf_rig.h"
+#include "io/gltf/gltf_test_util.h"
 #include "pipeline/rig_frames.h"
 #include "pose/animation.h"
 #include "pose/skinning.h"
@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using testing::temp_dir;
 
 std::string morph_file(const std::string& name) {
-  return SKINSLIDE_SOURCE_DIR "/tests/io/gltf_morph/" + name;
+  return SKINSLIDE_SOURCE_DIR "/tests/io/gltf/gltf_morph/" + name;
 }
 
 Vec3 unit(double x, double y, double z) { return Vec3(x, y, z).normalized(); }

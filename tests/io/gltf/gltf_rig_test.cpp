@@ -1,6 +1,6 @@
 // The rig read from glTF and posed by pose/, against a second evaluation written here from the
 // file alone: tinygltf's raw model, plain arrays, the spec's formulas spelled out.
-#include "io/gltf_rig.h"
+#include "io/gltf/gltf_rig.h"
 
 #include <cmath>
 #include <cstring>
@@ -10,10 +10,10 @@
 #include <tiny_gltf.h>
 
 #include "core/error.h"
-#include "io/gltf.h"
-#include "io/gltf_document.h"
+#include "io/gltf/gltf.h"
+#include "io/gltf/gltf_document.h"
 #include "helpers/samples.h"
-#include "io/gltf_test_util.h"
+#include "io/gltf/gltf_test_util.h"
 #include "pipeline/rig_frames.h"
 #include "pose/animation.h"
 #include "pose/skinning.h"

@@ -90,12 +90,12 @@ inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
     EXPECT_EQ(r_.status, 0) << r_.output;                                                   \
   } while (0)
 
-/// tests/io/gltf_compare.py: same JSON apart from schema defaults (and min/max of `edited`
+/// tests/io/gltf/gltf_compare.py: same JSON apart from schema defaults (and min/max of `edited`
 /// accessors), and, when nothing is edited, the same buffer bytes. Returns its report.
 inline CommandResult compare_gltf(const std::string& a, const std::string& b,
                                   const std::vector<int>& edited = {}) {
-  std::string cmd =
-      "python3 " SKINSLIDE_SOURCE_DIR "/tests/io/gltf_compare.py " + quoted(a) + " " + quoted(b);
+  std::string cmd = "python3 " SKINSLIDE_SOURCE_DIR "/tests/io/gltf/gltf_compare.py " + quoted(a) +
+                    " " + quoted(b);
   if (!edited.empty()) {
     cmd += " --edited ";
     for (size_t i = 0; i < edited.size(); ++i) cmd += (i ? "," : "") + std::to_string(edited[i]);

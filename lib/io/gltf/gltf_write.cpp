@@ -1,4 +1,4 @@
-#include "io/gltf_write.h"
+#include "io/gltf/gltf_write.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +13,8 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/gltf_accessor.h"
-#include "io/gltf_document.h"
+#include "io/gltf/gltf_accessor.h"
+#include "io/gltf/gltf_document.h"
 
 namespace skinslide {
 namespace {

@@ -1,5 +1,5 @@
 // The parsed glTF document a MeshFile keeps so that its slid copy can be written. Internal to io/:
-// only io/*.cpp include this header (it pulls in tinygltf, which no other folder may see).
+// only io/gltf/*.cpp include this header (it pulls in tinygltf, which no other folder may see).
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-#include "io/gltf_read.h"
+#include "io/gltf/gltf_read.h"
 
 #include <algorithm>
 #include <cctype>
@@ -12,10 +12,10 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/gltf_accessor.h"
-#include "io/gltf_buffer_uris.h"
-#include "io/gltf_document.h"
-#include "io/gltf_uri.h"
+#include "io/gltf/gltf_accessor.h"
+#include "io/gltf/gltf_buffer_uris.h"
+#include "io/gltf/gltf_document.h"
+#include "io/gltf/gltf_uri.h"
 
 namespace skinslide {
 namespace {
@@ -32,7 +32,7 @@ bool has_glb_magic(const std::string& bytes) {
 
 // Images are never decoded: skinslide writes them back as they were. The encoded bytes of a
 // data-URI image are kept (as_is) because nothing else holds them; buffer-view images stay in
-// their buffer, and external ones keep their URI and are never opened (io/gltf_uri.h).
+// their buffer, and external ones keep their URI and are never opened (io/gltf/gltf_uri.h).
 bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void*) {
   if (image->bufferView < 0 && image->uri.empty()) {
@@ -153,7 +153,7 @@ void check_attribute(const tinygltf::Model& model, int accessor, int type, Index
          "has " + std::to_string(acc.count) + " elements, POSITION has " + std::to_string(count));
 }
 
-// The file at `path` parsed by tinygltf. Every buffer URI is judged (io/gltf_uri.h) before
+// The file at `path` parsed by tinygltf. Every buffer URI is judged (io/gltf/gltf_uri.h) before
 // tinygltf opens a file, and tinygltf then opens only the files so approved: no byte from outside
 // the glTF's folder and the trusted trees is read, and no image at all.
 std::shared_ptr<GltfDocument> load_document(const std::string& path,

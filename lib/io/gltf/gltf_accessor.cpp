@@ -1,4 +1,4 @@
-#include "io/gltf_accessor.h"
+#include "io/gltf/gltf_accessor.h"
 
 #include <algorithm>
 #include <cstdint>

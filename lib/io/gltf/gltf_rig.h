@@ -7,7 +7,7 @@
 
 namespace skinslide {
 
-struct GltfDocument;  // io/gltf_document.h
+struct GltfDocument;  // io/gltf/gltf_document.h
 
 /// The rig of the mesh read into `doc`: its node (the first, in node order, that instantiates it
 /// with a skin, else the first that instantiates it), that node's skin if any, the whole node

@@ -1,4 +1,4 @@
-// Which files a glTF reads (io/gltf_uri.h, lib/io/README.md "Which files a glTF reads"): its
+// Which files a glTF reads (io/gltf/gltf_uri.h, lib/io/README.md "Which files a glTF reads"): its
 // buffers only, from inside its own folder or a trusted tree, checked before any byte is read.
 
 #include <fcntl.h>
@@ -16,11 +16,11 @@
 
 #include "core/error.h"
 #include "io/atomic_write.h"
-#include "io/gltf.h"
-#include "io/gltf_buffer_uris.h"
-#include "io/gltf_document.h"
-#include "io/gltf_test_util.h"
-#include "io/gltf_uri.h"
+#include "io/gltf/gltf.h"
+#include "io/gltf/gltf_buffer_uris.h"
+#include "io/gltf/gltf_document.h"
+#include "io/gltf/gltf_test_util.h"
+#include "io/gltf/gltf_uri.h"
 
 namespace skinslide {
 namespace {

@@ -1,10 +1,10 @@
-#include "io/gltf_weights.h"
+#include "io/gltf/gltf_weights.h"
 
 #include <cmath>
 
 #include "core/error.h"
-#include "io/gltf_accessor.h"
-#include "io/gltf_document.h"
+#include "io/gltf/gltf_accessor.h"
+#include "io/gltf/gltf_document.h"
 #include "core/number_format.h"
 
 namespace skinslide {

@@ -12,7 +12,7 @@ namespace skinslide {
 /// `file` was read from: one per welded vertex, in [0, 1].
 /// The attribute is a SCALAR accessor of floats, or of normalized unsigned bytes or shorts
 /// (0..255 or 0..65535 read as 0..1); sparse accessors are read. Every triangle primitive of the
-/// mesh (the surface io/gltf.h reads; points and lines primitives are ignored) must have it.
+/// mesh (the surface io/gltf/gltf.h reads; points and lines primitives are ignored) must have it.
 /// A welded vertex takes the weight of its first raw copy (the one its position comes from):
 /// raw copies that disagree, as on a seam painted differently on each side, do not fail.
 /// Output: #V weights (V = file.mesh.vertex_count()).
