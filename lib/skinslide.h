@@ -62,7 +62,7 @@ void check_options(const SlideOptions& options);
 /// Slides one frame: `frame` holds the deformed positions (#V x 3, the bind's vertex order);
 /// `out` (#V x 3) receives the frame with every slid vertex moved. Returns what happened to each
 /// patch (frame_figures names its figures; the edge-length spreads only with `edge_spread`,
-/// which costs about 5% more). Pure and thread-safe.
+/// which costs more: tests/bench/README.md "Performance"). Pure and thread-safe.
 /// \throw Error(Input) when `frame` or `out` is not #V x 3; Error(Numeric) when a slide fails.
 std::vector<PatchFrameReport> slide(const BindSetup& setup, std::span<const double> frame,
                                     std::span<double> out, bool edge_spread = false);

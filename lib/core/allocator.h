@@ -12,18 +12,18 @@ namespace skinslide {
 /// buffers). By default glibc maps blocks above a threshold afresh and unmaps them on free, trims
 /// the heap's top, and gives each thread its own arena, so every frame touches new pages; on a
 /// virtual machine a page fault is expensive. With freed memory kept and one arena, a frame
-/// reuses the pages of the frame before: at 40k vertices a frame's net took 29 ms instead of
-/// 70, and the command's peak memory went down (one arena holds fewer idle blocks than one per
-/// thread; 490k vertices: 607 MB instead of 743). The threads allocate a few large blocks a
-/// frame, so sharing one arena's lock costs nothing measurable. Call once, first thing in main().
+/// reuses the pages of the frame before, and the command's peak memory is lower (one arena holds
+/// fewer idle blocks than one per thread); tests/bench/README.md "Performance" has the figures.
+/// The threads allocate a few large blocks a frame, so sharing one arena's lock is cheap. Call
+/// once, first thing in main().
 /// \return false if the allocator rejected a setting (the others still apply)
 bool keep_freed_memory();
 
 /// Restarts the process image (same pid, arguments and descriptors) with glibc's heap backed by
 /// transparent huge pages, when the kernel grants them only on request (THP mode `madvise`, the
 /// Debian default) and glibc can ask (2.35 on). The set-up touches every page of its arrays once,
-/// and one fault then maps 2 MiB instead of 4 KiB: the 1M-vertex set-up went from 5.6-6.9 s to
-/// 4.0-4.2 s. Returns without restarting when there is nothing to gain or GLIBC_TUNABLES already
+/// and one fault then maps 2 MiB instead of 4 KiB (tests/bench/README.md "Huge pages on the
+/// farm"). Returns without restarting when there is nothing to gain or GLIBC_TUNABLES already
 /// decides (`glibc.malloc.hugetlb=0` opts out), and when the restart fails. Call first in main(),
 /// before any thread or output.
 void restart_with_huge_pages(char** argv);

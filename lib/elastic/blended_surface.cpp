@@ -20,12 +20,10 @@ double inradius(const Chart& chart, Index t) {
 // A vertex that moves near an edge lies off the facets by up to the crease's angle times the
 // edge's band width, and each triangle at that vertex feels it against its own size: a sliver's
 // energy grows with that offset over its inradius, so the slide written on the facets gains
-// less than the relaxed one, or nothing (a whole torso came back unslid). An edge's band is
-// therefore at most this many times the smallest inradius among the triangles around either of
-// its ends: where neighbouring triangles are within 3x of each other's size it changes nothing.
-// Measured (tests/bench/elastic.md "Slivers under the blend"): 1 kept 24 of the stress corpus's
-// 36 frames within 5% of their reference but doubled the hand's and tripled CesiumMan's elbow's
-// jitter; 3 kept 25 and the swings' jitter (the hand's p99 0.016 -> 0.023); no bound 21.
+// less than the relaxed one, or nothing. An edge's band is therefore at most this many times the
+// smallest inradius among the triangles around either of its ends: where neighbouring triangles
+// are within 3x of each other's size it changes nothing (the bound's measurements:
+// tests/bench/elastic.md "Slivers under the blend").
 constexpr double kSliverFanShare = 3;
 
 bool is_patch(const Chart& chart, Index t) { return t >= 0 && t < chart.patch_triangle_count; }

@@ -80,10 +80,9 @@ std::string convergence_text(const ElasticReport& r) {
 }
 
 // A window's mean is told on the frame's line when it keeps more of the frame's energy than its
-// own slide by this share of the frame's energy: ten points of "energy left". With --window 4 the
-// swings of scripts/quality.sh stay below it, the fast walks pass it in 4 frames of 48 (the knees:
-// 11-28 points, two of them at the sequence's start) and 2 of 18 (the Fox); separate expressions
-// (the ICT face, --window 2) pass it by 17-74 points in every frame.
+// own slide by this share of the frame's energy: ten points of "energy left" (lib/elastic/README.md
+// rule 12), above what a window over one motion costs and below what one mixing separate poses
+// does (tests/bench/elastic.md "Figures behind the code's constants").
 constexpr double kWindowCostTold = 0.1;
 
 bool window_mean_costly(double before, double after, double own) {

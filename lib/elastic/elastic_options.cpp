@@ -7,9 +7,8 @@ constexpr Words<ElasticSolver, 2> kSolverWords{
     "solver", {{{"map", ElasticSolver::Map}, {"search", ElasticSolver::Search}}}};
 
 // --blend's narrowest bands, in inradii: below it a band is thinner than round-off places a chart
-// point, and the blended surface's slopes overflow (measured on data/elbow: 1e-6 to 1 slide the
-// same within 0.001 of energy; 1e-17 kept 88% against 76%, and 1e-100 nothing, both read as
-// converged).
+// point, and the blended surface's slopes overflow (tests/bench/elastic.md "Figures behind the
+// code's constants").
 constexpr double kMinBlend = 1e-3;
 
 void check_blend(const ElasticOptions& options) {

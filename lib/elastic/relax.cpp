@@ -29,9 +29,9 @@ constexpr Index kHoldBudgetShare = 10;
 constexpr int kBudgetGrowth = 4;
 constexpr int kMaxDirectionIterations = 128;
 // A direction that stopped at its budget with more than this share of its starting residual
-// left is unsolved. Measured at the budget of 8 (median over a frame's capped directions):
-// 0.22-0.96 on the twelve stress cases, at most 0.072 on the slow swings and CesiumMan's knees
-// (whose largest is 0.195).
+// left is unsolved: the median over a frame's capped directions at the budget of 8, which
+// separates the meshes where the bind's factor fails from the rest (tests/bench/elastic.md
+// "Escalation").
 constexpr double kUnsolvedResidual = 0.1;
 
 // One patch's relaxation in one frame, in named phases: the rotations of a round
@@ -271,11 +271,10 @@ ElasticStop relax_pass(Relaxation& relaxation, const ElasticOptions& options, bo
 // round stalled (small gain) or ran out of steps (limit) while its directions went unsolved
 // (directions_unsolved), is relaxed again, as many rounds from where it
 // is, with a budget kBudgetGrowth times larger, up to kMaxDirectionIterations: where the
-// frame's tangent planes turn against the bind's all over and slivers stiffen the metric (the
-// stress corpus's sculpts and scans), the bind's factor is a poor preconditioner and 8
-// iterations leave steps too short to count (the devil head kept 100% of its energy at 8, 55%
-// at 50, 52% at 200; its converged reference 49%). A frame that converges in the first pass, or
-// whose directions were nearly solved, is not touched.
+// frame's tangent planes turn against the bind's all over and slivers stiffen the metric (in
+// sculpts and scans), the bind's factor is a poor preconditioner and 8 iterations leave steps
+// too short to count (tests/bench/elastic.md "Escalation"). A frame that converges in the first
+// pass, or whose directions were nearly solved, is not touched.
 void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, ElasticResult& result) {
   relaxation.set_direction_budget(DirectionSolve{}.max_iterations);
   ElasticStop last_round = relax_pass(relaxation, options, true, result);
@@ -291,12 +290,12 @@ void relax_rounds(Relaxation& relaxation, const ElasticOptions& options, Elastic
     result.stop = last_round;
     // The escalation was tuned on the bind's metric alone: a frame it finds stationary is not
     // relaxed again, so that the curvature's reading changes the stop's name, not the slide (the
-    // slow swings' frames it would escalate jitter more after).
+    // escalation on its reading: tests/bench/elastic.md "Honest stops: the first-order gain left").
     if (gain.bind_metric <= tolerance) return;
     const int budget = relaxation.direction_budget() * kBudgetGrowth;
     // A round at --max-iterations is escalated too: with unsolved directions its steps were
-    // too short to count, however many it took (`--max-iterations 30 --tolerance 1e-6` left the
-    // devil head 99.6% of its energy, and 50% escalated).
+    // too short to count, however many it took (tests/bench/elastic.md "A round at its step
+    // limit, escalated").
     const bool stalled =
         last_round == ElasticStop::SmallGain || last_round == ElasticStop::IterationLimit;
     if (!stalled || !relaxation.directions_unsolved() || budget > kMaxDirectionIterations) return;

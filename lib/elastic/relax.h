@@ -40,15 +40,14 @@ struct ElasticOptions {
   double tolerance = 3e-4;
   /// A frame has converged when the first-order gain left (stationarity.h: what a Newton step
   /// in the bind's metric along every vertex's steepest one-sided descent would gain) is at most
-  /// this fraction of the frame's energy (README rule 10). The default steps leave 0.3-9% on the
-  /// slow swings and data/elbow, 7.7% to over 100% on every stress case.
+  /// this fraction of the frame's energy (README rule 10; what the default steps leave:
+  /// tests/bench/elastic.md "Figures behind the code's constants").
   double convergence = 5e-2;
   /// Bind time: relax on the frame's facets blended smooth near their edges (blended_surface.h),
   /// each edge's blend this share of its triangles' inradius wide (narrower next to slivers);
   /// 0: on the facets. On the facets a slid vertex's minimum sticks to chart edges and slips off
-  /// them from frame to frame (jitter in slow motion); 1 took the jitter of
-  /// `scripts/quality.sh`'s slow swings down 1.1-14x, at 1-3.4x the relax time
-  /// (tests/bench/elastic.md "A blended surface").
+  /// them from frame to frame (jitter in slow motion); 1 takes far less jitter, at a few times
+  /// the relax time (tests/bench/elastic.md "A blended surface").
   double blend = 0;
   /// The first this many rotation fits aim only part of the way from the frame's own stretch to
   /// the bind's: fit r (from 0) aims at (1 - a) J_frame + a s R with a = (r + 1) / (ease_in + 1),

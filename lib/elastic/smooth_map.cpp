@@ -22,8 +22,8 @@ constexpr double kCrushed = 0.05;
 // of the vertex's own stiffness K_ii in the directions its tangent frame loses, K_ii (I - Q^T Q)
 // (0 where T is well conditioned, K_ii along a direction crushed to nothing). It bounds the step
 // where a chart step hardly moves the point; elsewhere the step is Gauss-Newton's (a damping of
-// every direction held the smooth modes of a large patch in place: 2% of the energy gained on a
-// 37,000-vertex patch).
+// every direction held the smooth modes of a large patch in place: tests/bench/elastic.md
+// "Figures behind the code's constants").
 constexpr double kDamping = 1.0;
 // A tangent frame's Jacobian T is regularised by this share of trace(T^T T) before its Cholesky
 // factor is taken: S^T S = T^T T + kTangentFloor trace I is continuous and definite for any

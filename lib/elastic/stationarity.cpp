@@ -149,8 +149,8 @@ Vec3 blended_descent(const FrameSurface& surface, Index t, const Vec2& u, const 
 namespace {
 
 // The curvature estimate's conjugate gradients: at most this many iterations (each one back-solve
-// with the bind's factor): 8 reached 96% of the solved estimate on a whole head, 92% on the tube
-// swing's most bent frame and 98% on the 40k bench frame (4: 83%, 79%, 81%).
+// with the bind's factor), enough to reach nearly all of the solved estimate
+// (tests/bench/elastic.md "Figures behind the code's constants").
 constexpr int kCurvatureIterations = 8;
 // ... and they stop once an iteration adds less than this share of the estimate.
 constexpr double kCurvatureAccuracy = 1e-2;
@@ -160,8 +160,8 @@ constexpr double kCurvatureAccuracy = 1e-2;
 // axes are there (its triangle's Jacobian projected into the plane), so that neighbours' bases
 // agree and the bind's factor preconditions them as it does the steps; crushed where either
 // vanishes. A facet's own plane would do for a short step, but the gain left is reached by long
-// ones across many facets: with the facets' planes a whole head read 0.063 of its frame's energy
-// where further rotation fits gained 0.113, with the smooth planes 0.084.
+// ones across many facets, which a facet's plane under-reads (tests/bench/elastic.md "Honest
+// stops: the first-order gain left").
 std::vector<TangentFrame> smooth_tangent_frames(const FrameSurface& surface,
                                                 const std::vector<Index>& movable,
                                                 const SlideState& state) {

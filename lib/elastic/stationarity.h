@@ -39,8 +39,9 @@ struct FirstOrderGain {
   /// With the energy's own curvature H (the rotations refitted, arap_curvature) in the frame's
   /// smooth tangent planes, 1/2 b^T (Q^T H Q)^-1 b with b = Q^T rho, by conjugate gradients
   /// preconditioned by K's factor. H is softer than K where triangles may turn (bending, a
-  /// twist): there the bind's metric read 0.3-0.6x what further rotation fits reach (a whole
-  /// head 5% of its frame's energy where 11% was left), this one 0.7-1x (the head 8.4%).
+  /// twist): there the bind's metric under-reads what further rotation fits reach, and this one
+  /// reads close to it (tests/bench/stress.md "A stronger reference, and a measure that sees
+  /// rotations").
   double curvature = 0;
   double larger() const { return std::max(bind_metric, curvature); }
 };

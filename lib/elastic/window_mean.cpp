@@ -75,9 +75,8 @@ double share_unfolding(const ElasticSetup& setup, const Positions3& frame, const
 // Rule 12: the moving corners of slid triangles that fold go back towards their own relaxed
 // points, each only as far as its triangles need, until none folds. Returns how many vertices
 // moved back. Going back only as far as needed keeps the slide continuous where a fold starts:
-// in fixed steps a corner jumps by a step's share of the jitter the window takes out (a quarter
-// of the way at a time gave CesiumMan's knees a jitter max of 0.15 bind edges a frame, the whole
-// way 0.29).
+// in fixed steps a corner jumps by a step's share of the jitter the window takes out
+// (tests/bench/elastic.md "The window's ways back made continuous").
 int return_folded(const ElasticSetup& setup, const Positions3& frame, const ElasticResult& own,
                   const Positions2& mean, ElasticResult& r) {
   const Chart& chart = setup.chart;
@@ -144,7 +143,7 @@ ElasticResult window_mean(const ElasticSetup& setup, const Positions3& frame,
   // whole patch goes back towards its own slide as far as the energy needs, bisected between
   // the mean (above) and its own slide (below). Sent back whole, a patch jumped by the very
   // jitter the window takes out wherever the frames in a window differ too much to share a mean
-  // (CesiumMan's knees with --window 8: jitter max 0.25 bind edges a frame).
+  // (tests/bench/elastic.md "The window's ways back made continuous").
   if (!(r.energy_after <= own.energy_before)) {
     double above = 0, below = 1;
     r = own;

@@ -205,8 +205,8 @@ class NearTriangles {
 // bounding box covers the point's cell of a grid over the net, the rule's choice; failing that,
 // the nearest triangle. For a few points (failed walks) the candidates are collected in one pass
 // over the triangles that looks only at the cells holding such points, instead of listing every
-// triangle of every cell (50-60 ms at 490k triangles); that full grid is built for many points,
-// and for a point no triangle holds.
+// triangle of every cell (tests/bench/README.md "Performance"); that full grid is built for many
+// points, and for a point no triangle holds.
 void locate_missed(const Positions2& points, const Positions2& net,
                    const std::vector<Triangle>& triangles, const std::vector<size_t>& missed,
                    std::vector<Location>& out) {
@@ -256,7 +256,8 @@ void locate_missed(const Positions2& points, const Positions2& net,
 // Where a walk failed (it circled, left the net or met a degenerate triangle), the triangles
 // around its end, breadth-first across shared edges, up to kTriangles of them: the first that
 // holds the point. Points there are near a hole's border or a fold, a few triangles away; this
-// spares the whole-net grid of locate_missed, which costs 50-140 ms a frame at 490k-1M triangles.
+// spares the whole-net grid of locate_missed, which costs a frame tens of milliseconds on large
+// nets (tests/bench/README.md "Performance").
 class NearbySearch {
  public:
   explicit NearbySearch(size_t triangle_count) : triangle_count_(triangle_count) {}

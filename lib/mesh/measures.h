@@ -23,14 +23,8 @@ inline constexpr double kLargestPatchSpan = 1e60;
 /// one point: a degenerate frame the methods handle, or a bind refused as having zero length).
 /// A frame is compared with the bind in float32 (at rest: written unchanged), and point caches
 /// hold float32: both keep float32's relative precision only while its smallest step, 1.4e-45,
-/// is below 6e-8 of the span, i.e. from a span of about 2e-38. Measured on data/elbow (span 3.8;
-/// bind and frames scaled alike, both methods), the slide divided by the scale matched the
-/// unscaled slide within 5e-13 of the diagonal for scales from 1e-6 down to 1e-45; at 1e-50
-/// every frame read as at rest and was written unslid (off by 0.024 of the diagonal, elastic;
-/// 0.046, paper); from 1e-165 the squared lengths underflow ("the outer boundary loop has zero
-/// length"). Without the float32 comparison the methods themselves held to 1e-77 (elastic: its
-/// energy, a length to the 4th, underflows below) and 1e-155 (paper). 1e-30 leaves a factor 1e8
-/// above float32's limit.
+/// is below 6e-8 of the span, i.e. from a span of about 2e-38; 1e-30 leaves a factor 1e8 above
+/// that limit (the slide at scaled-down meshes: tests/bench/README.md "Tiny and huge patches").
 inline constexpr double kSmallestPatchSpan = 1e-30;
 
 /// Checks that `points` (a patch's positions; `ids` their mesh vertex ids, for the message) span

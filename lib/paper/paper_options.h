@@ -26,12 +26,8 @@ enum class FrameSolver {
 };
 
 /// Where Auto switches to Multigrid: the frame system's free nodes. A factorisation grows as
-/// n^1.5 and a multigrid solve as n. With the multigrid's two-lane sweeps in Cuthill-McKee order,
-/// fused passes and its coarse steps' products taken from their sweeps, a frame net costs,
-/// Cholesky against multigrid (three interleaved runs each): on the benchmark's nets 1.6k free
-/// nodes 0.55 / 0.76 ms, 4.3k 1.85 / 1.99, 8.8k 4.86 / 4.29; on the ICT face (9.0k) 5.59 /
-/// 5.26. The crossover lies near 6k; the multigrid's set-up, with no ordering, is 1.6-2.4x
-/// shorter at every size (4.3k: 18.4 against 8.7 ms).
+/// n^1.5 and a multigrid solve as n, so above some size the multigrid's frame net is the
+/// cheaper; this is the measured crossover (tests/bench/README.md "Where Auto switches").
 constexpr int kMultigridFreeNodes = 6000;
 
 /// How each free vertex's bind-net point is found in the frame net (the same rule for picking

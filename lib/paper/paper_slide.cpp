@@ -148,7 +148,7 @@ PaperSetup paper_setup(Patch& patch, const Positions3& points, const PaperOption
   BarNet frame = frame_net(patch);
   // The frame nets' solver depends on their bars and fixed nodes, not on the bind net it starts
   // from: with a spare thread, a multigrid one (its free system, slots and levels) is built
-  // while the bind net is solved, then warm-started at it (1M vertices: about 0.5 s of work).
+  // while the bind net is solved, then warm-started at it (tests/bench/README.md "Performance").
   // The same solver either way.
   std::future<FrameNetSolver> prepared;
   if (spare_thread && method == FrameNetMethod::Multigrid)

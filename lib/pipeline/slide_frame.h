@@ -44,7 +44,7 @@ struct FrameResult {
 };
 
 /// What slide_frame computes besides the slid vertices, for dumps and reports: each costs time
-/// on every frame (the spreads a log per bar, twice: about 5% of a 40k-vertex frame).
+/// on every frame (the spreads a log per bar, twice: tests/bench/README.md "Performance").
 struct FrameExtras {
   int id_image_size = 0;     ///< > 0: keep each patch's ID lookup image, this many pixels a side
   bool edge_spread = false;  ///< PatchFrameReport::spread_frame and spread_slid

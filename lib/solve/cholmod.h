@@ -11,10 +11,9 @@ namespace skinslide {
 
 /// CHOLMOD's workspace with the settings shared by the analysis and every factorisation: one
 /// fixed ordering, so the factor never depends on which ordering a heuristic happened to prefer:
-/// CHOLMOD's nested dissection (METIS bisections, constrained minimum degree on the parts), whose
-/// frame factors took 5-10% less time than METIS's own ordering (40k to 490k vertices) and less
-/// than half AMD's; simplicial LDL^T, which beat the supernodal factor, with the reference BLAS
-/// and with OpenBLAS; silent.
+/// CHOLMOD's nested dissection (METIS bisections, constrained minimum degree on the parts), the
+/// fastest frame factors of the orderings measured; simplicial LDL^T, which beat the supernodal
+/// factor (tests/bench/README.md "Performance"); silent.
 class Cholmod {
  public:
   Cholmod();

@@ -260,9 +260,9 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z, Vec* az) {
   // From zero, the forward sweep reads only the strictly lower part, and afterwards row j's
   // residual is what the strictly upper part takes: -sum_{i>j} a_ji z_i. A is symmetric, so row
   // i's strictly lower entries are those terms of the rows before it: each is restricted as
-  // soon as z_i is known, in the same pass instead of a second half pass (frames 4-12% faster).
-  // On coarse levels a_ij and a_ji are sums of the same fine values in different orders and may
-  // differ in the last bit: a preconditioner need not be exact.
+  // soon as z_i is known, in the same pass instead of a second half pass (tests/bench/README.md
+  // "Performance"). On coarse levels a_ij and a_ji are sums of the same fine values in different
+  // orders and may differ in the last bit: a preconditioner need not be exact.
   Numeric::Work& w = N.work[l];
   std::fill(w.rc.begin(), w.rc.end(), Pair{0, 0});
   for (Index i = 0; i < L.rows; ++i) {
@@ -288,8 +288,8 @@ void kcycle(Numeric& N, size_t l, const Vec& r, Vec& z, Vec* az) {
 // front, whatever order the file had its vertices in: a row's neighbours are near it in memory,
 // most rows have as many neighbours before them as the row before (the loops exit where the
 // processor predicts), and Gauss-Seidel along a front smooths better than along the file's
-// order (8.8k free vertices in grid order: 22 -> 17 iterations; the same shuffled: 14.8 -> 7.5
-// ms a frame). Components one after another, each from the far end of its lowest row.
+// order (tests/bench/README.md "Performance"). Components one after another, each from the
+// far end of its lowest row.
 std::vector<Index> cuthill_mckee_order(const SparseMatrix& A) {
   const Index n = static_cast<Index>(A.rows());
   const Index* start = A.outerIndexPtr();

@@ -18,8 +18,8 @@ constexpr Index kCoarsestRows = 100;      // factorised directly
 constexpr Index kLargestCoarsest = 4000;  // aggregates stalling above this: no hierarchy
 constexpr double kStrong = 0.1;           // strong coupling: >= 1/10 of the row's strongest
 // The prolongator's damped Jacobi step: omega = kSmoothing / (a Gershgorin bound of the spectral
-// radius of D^-1 A). 1.6 took the fewest iterations on the bench cases (40k vertices: 8, against
-// 9 with the textbook's 4/3 and 12 with 1).
+// radius of D^-1 A): the weight that takes the fewest iterations (against the textbook's 4/3:
+// tests/bench/README.md "The elastic bind set-up").
 constexpr double kSmoothing = 1.6;
 
 // CSR helpers -----------------------------------------------------------------------------------
