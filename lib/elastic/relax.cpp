@@ -382,6 +382,7 @@ ElasticSetup elastic_setup(const Positions3& points, const std::vector<Triangle>
   setup.triangle_weight = triangles.empty() ? 0.0 : area / static_cast<double>(triangles.size());
   setup.metric =
       elastic_metric(arap_triangles(setup), setup.movable_slot, static_cast<Index>(movable.size()));
+  setup.map_step_iterations = map_step_budget(setup, points);
   return setup;
 }
 
@@ -426,7 +427,7 @@ ElasticResult relax_patch(const ElasticSetup& setup, const Positions3& frame,
     return result;
   }
   if (options.solver == ElasticSolver::Map) {
-    smooth_map(setup, surface, SmoothMapRun{options.passes}, result);
+    smooth_map(setup, surface, SmoothMapRun{options.passes, setup.map_step_iterations}, result);
     const double tolerance = options.convergence * result.energy_before;
     result.gain_left = gain_left_at(setup, surface, s, result, tolerance);
     result.stop = result.gain_left <= tolerance ? ElasticStop::Converged : ElasticStop::Passes;

@@ -59,6 +59,16 @@ struct ElasticOptions {
   int ease_in = 0;
 };
 
+/// The map's conjugate-gradient iterations a pass on a patch whose bind's factor preconditions
+/// its step system well: they solve the damped step nearly exactly there (16 slide the same); 2 or
+/// 4 leave a step's direction to the truncation, which jitters (lib/elastic/README.md "The map").
+constexpr int kMapStepIterations = 8;
+/// The most any patch is given (smooth_map.h map_step_budget): 16 times the least.
+constexpr int kMaxMapStepIterations = 128;
+/// The share of its starting residual the bind's own step system must be solved to within a
+/// patch's budget (map_step_budget).
+constexpr double kMapStepResidual = 0.05;
+
 /// Bind-time precompute of one patch: plain data, immutable once built, shared by every frame.
 struct ElasticSetup {
   Chart chart;
@@ -73,6 +83,8 @@ struct ElasticSetup {
   /// The bind's ARAP metric over the movable vertices and its factor: every step's
   /// preconditioner (step_direction.h).
   ElasticMetric metric;
+  /// The map's conjugate-gradient iterations a pass (smooth_map.h map_step_budget).
+  int map_step_iterations = kMapStepIterations;
 };
 
 /// \param points bind positions of the patch's vertices (local ids); `triangles` index them.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
@@ -95,6 +96,22 @@ TangentFrame map_tangent_frame(const Mat32& T) {
   out.S_inverse = S.inverse();
   out.Q = T * out.S_inverse;
   return out;
+}
+
+// K_ii per movable vertex.
+std::vector<double> diagonal(const ElasticMetric& metric) {
+  std::vector<double> out(metric.size(), 0.0);
+  for (Index i = 0; i < metric.size(); ++i)
+    for (Index e = metric.start[i]; e < metric.start[i + 1]; ++e)
+      if (metric.column[e] == i) out[i] = metric.value[e];
+  return out;
+}
+
+// A vertex's damping (kDamping): K_ii (I - Q^T Q) kDamping plus the metric's shift.
+Eigen::Matrix2d step_damping(const ElasticMetric& metric, double stiffness,
+                             const TangentFrame& frame) {
+  return kDamping * stiffness * (Eigen::Matrix2d::Identity() - frame.Q.transpose() * frame.Q) +
+         metric.shift * Eigen::Matrix2d::Identity();
 }
 
 // (Q^T (K x I3) Q + diag(damping)) p.
@@ -281,6 +298,42 @@ Mat32 blended_jacobian(const Chart& chart, const std::vector<Mat32>& field, cons
   return p.weight[0] * field[tri[0]] + p.weight[1] * field[tri[1]] + p.weight[2] * field[tri[2]];
 }
 
+int map_step_budget(const ElasticSetup& setup, const Positions3& bind) {
+  const ElasticMetric& metric = setup.metric;
+  const Index m = metric.size();
+  if (m == 0) return kMapStepIterations;
+  const FrameSurface surface = frame_surface(setup.chart, bind);
+  const std::vector<Mat32> field = vertex_jacobians(surface);
+  const std::vector<double> stiffness = diagonal(metric);
+  std::vector<TangentFrame> frames(m);
+  std::vector<Eigen::Matrix2d> damping(m);
+  for (Index i = 0; i < m; ++i) {
+    frames[i] = map_tangent_frame(field[setup.movable[i]]);
+    damping[i] = step_damping(metric, stiffness[i], frames[i]);
+  }
+  // The right side: K y per coordinate, y a fixed pseudo-random field in [-1/2, 1/2]^3 (every
+  // mode of the metric, the stiffest included).
+  Positions3 y(m), gradient(m, Vec3::Zero());
+  for (Index i = 0; i < m; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const auto k = static_cast<std::uint64_t>(i) * 3 + static_cast<std::uint64_t>(c);
+      y[i][c] = static_cast<std::uint32_t>(k * 2654435761u) / 4294967296.0 - 0.5;
+    }
+  for (Index i = 0; i < m; ++i)
+    for (Index e = metric.start[i]; e < metric.start[i + 1]; ++e)
+      gradient[i] += metric.value[e] * y[metric.column[e]];
+  double start = 0;
+  for (Index i = 0; i < m; ++i) start += (frames[i].Q.transpose() * gradient[i]).squaredNorm();
+  DirectionWork work;
+  int budget = kMapStepIterations;
+  for (; budget < kMaxMapStepIterations; budget *= 2) {
+    int done = 0;
+    map_step(metric, frames, gradient, damping, budget, work, done);
+    if (dot(work.r, work.r) <= kMapStepResidual * kMapStepResidual * start) break;
+  }
+  return budget;
+}
+
 void smooth_map(const ElasticSetup& setup, const FrameSurface& surface, const SmoothMapRun& run,
                 ElasticResult& result) {
   const Chart& chart = setup.chart;
@@ -288,10 +341,7 @@ void smooth_map(const ElasticSetup& setup, const FrameSurface& surface, const Sm
   const ArapTriangles mesh = arap_triangles(setup);
   const ElasticMetric& metric = setup.metric;
   const std::vector<Mat32> field = vertex_jacobians(surface);
-  std::vector<double> stiffness(m);
-  for (Index i = 0; i < m; ++i)
-    for (Index e = metric.start[i]; e < metric.start[i + 1]; ++e)
-      if (metric.column[e] == i) stiffness[i] = metric.value[e];
+  const std::vector<double> stiffness = diagonal(metric);
   std::vector<Eigen::Matrix2d> damping(m);
   MapState state{chart.uv, std::vector<ChartPoint>(m), surface.frame};
   for (Index i = 0; i < m; ++i) state.where[i] = at_node(chart, setup.movable[i]);
@@ -307,9 +357,7 @@ void smooth_map(const ElasticSetup& setup, const FrameSurface& surface, const Sm
       g_movable[i] = gradient[setup.movable[i]];
       T[i] = blended_jacobian(chart, field, state.where[i]);
       frames[i] = map_tangent_frame(T[i]);
-      damping[i] = kDamping * stiffness[i] *
-                       (Eigen::Matrix2d::Identity() - frames[i].Q.transpose() * frames[i].Q) +
-                   metric.shift * Eigen::Matrix2d::Identity();
+      damping[i] = step_damping(metric, stiffness[i], frames[i]);
     }
     const Positions2 d = map_step(metric, frames, g_movable, damping, run.step_iterations, work,
                                   result.solver_iterations);

@@ -26,11 +26,21 @@ namespace skinslide {
 struct SmoothMapRun {
   int passes = 2;  ///< ElasticOptions::passes
   /// Preconditioned conjugate-gradient iterations of each pass's step (each one back-solve with
-  /// the bind's factor), from zero: a fixed count keeps the step a continuous function. 8 solve
-  /// the damped step nearly exactly (16 slide the same); 2 or 4 leave a step's direction to the
-  /// truncation, which jitters (lib/elastic/README.md "The map").
-  int step_iterations = 8;
+  /// the bind's factor), from zero: a fixed count keeps the step a continuous function. The
+  /// patch's own count, from its bind (ElasticSetup::map_step_iterations, map_step_budget).
+  int step_iterations = kMapStepIterations;
 };
+
+/// The map's step budget for one patch, from its bind alone, so that every frame of the patch is
+/// mapped by the same function: the fewest of kMapStepIterations, twice as many, ... up to
+/// kMaxMapStepIterations conjugate gradients that solve the bind's own step system (the bind as
+/// its frame: its Jacobian field, tangent frames and damping) for a fixed right side (the metric
+/// applied to a fixed pseudo-random field) to kMapStepResidual of its starting residual; the
+/// largest when none does. Where the bind's factor preconditions that system well (smooth,
+/// well-shaped patches) this is the smallest count; slivers, needles and charts that squeeze a
+/// whole head into a disk need more (lib/elastic/README.md "The map", rule M3).
+/// \param bind the bind positions of the patch's vertices (local ids), as elastic_setup's.
+int map_step_budget(const ElasticSetup& setup, const Positions3& bind);
 
 /// Runs the map on one patch in one frame whose energy (`result.energy_before`) and stretch
 /// (`result.scale`) are set and which is not at rest, and fills `result`: every movable vertex's

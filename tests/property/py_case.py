@@ -314,7 +314,9 @@ def check(case, result, outs):
                                 f"{pr.get('spread_slid')!r}")
             if case.method == "elastic" and cli_case.stop_problem(pr.get("stop")):
                 problems.append(f"{label}: patch {ci} {cli_case.stop_problem(pr.get('stop'))}")
-            if case.method == "elastic" and pr.get("flips") and ci < len(case.comps):
+            # The search's fold-freedom (cli_case: the map counts its flips, promises none).
+            if case.method == "elastic" and pr.get("flips") and ci < len(case.comps) and \
+                    cli_case.searches(case):
                 moving = _expected_patch_moves(case, ci)[1]
                 if not any(0 < case.w_eff[v] < 1 for v in moving):
                     problems.append(f"{label}: patch {ci}: {pr['flips']} flips (elastic slides "
