@@ -30,8 +30,8 @@ constexpr double kDamping = 1.0;
 // factor is taken: S^T S = T^T T + kTangentFloor trace I is continuous and definite for any
 // non-zero T (the search holds such vertices instead: a branch).
 constexpr double kTangentFloor = 1e-4;
-// A pass changes a triangle's edges by at most about this share of its smallest altitude (below
-// one half it cannot fold), saturating smoothly (step_shares).
+// A pass changes a triangle's edges by less than this share of its smallest altitude (below one
+// half it cannot fold), saturating smoothly (step_shares).
 constexpr double kStepReach = 0.4;
 // back_within_energy's share: bisected to 2^-16, far below a written digit of a slide.
 constexpr int kBackShareBits = 16;
@@ -165,20 +165,26 @@ double smallest_altitude(const V& a, const V& b, const V& c, double area) {
 }
 
 // Per movable vertex the share of its step `d` a pass takes (T: the vertices' Jacobians). Per patch
-// triangle the step's strain: the largest change it makes to one of its edges, over its smallest
-// altitude, in the chart and in 3D facing its frame triangle (T d for 3D; a corner that does not
-// move changes nothing). While every edge of a triangle changes by less than half its smallest
-// altitude, no corner crosses the line through the other two: the triangle does not fold. A
-// vertex takes (1 + x^4)^(-1/4) of its step, x its triangles' largest strain over kStepReach:
-// nearly all of it below half the reach, and a shrinking share above. A step that moves a
-// region as a whole strains nothing, however long (the bind's smooth modes on a large patch).
+// triangle and edge the step's strain: the change it makes to the edge over the triangle's
+// smallest altitude, in the chart and in 3D facing its frame triangle (T d for 3D; a corner that
+// does not move changes nothing). While every edge of a triangle changes by less than half its
+// smallest altitude, no corner crosses the line through the other two: the triangle does not
+// fold. A vertex takes (1 + sum x^4)^(-1/4) of its step, the sum over every strain x of its
+// triangles' edges, over kStepReach, in both spaces: nearly all of it where the step is smooth, a
+// shrinking share where it would crush a triangle, and the largest strain it leaves is below the
+// reach. A smooth function of the strains (a largest strain would kink the share where its
+// argument changes hands: a kink in time). A step that moves a region as a whole strains
+// nothing, however long (the bind's smooth modes on a large patch).
 std::vector<double> step_shares(const ElasticSetup& setup, const FrameSurface& surface,
                                 const MapState& state, const Positions2& d,
                                 const std::vector<Mat32>& T) {
   const Chart& chart = setup.chart;
-  std::vector<double> strain(setup.movable.size(), 0.0);
+  std::vector<double> strain4(setup.movable.size(), 0.0);  // per vertex: sum of (x reach)^4
   const auto& u = state.node_uv;
   const auto& x = state.x;
+  const auto over = [](double change, double altitude) {
+    return change == 0 ? 0.0 : altitude > 0 ? change / altitude : INFINITY;
+  };
   for (Index t = 0; t < chart.patch_triangle_count; ++t) {
     const Triangle& tri = chart.triangles[t];
     std::array<Vec2, 3> du;
@@ -191,29 +197,28 @@ std::vector<double> step_shares(const ElasticSetup& setup, const FrameSurface& s
       moves = moves || i >= 0;
     }
     if (!moves) continue;
-    double chart_change = 0, space_change = 0;
-    for (int k = 0; k < 3; ++k) {
-      chart_change = std::max(chart_change, (du[(k + 1) % 3] - du[k]).norm());
-      space_change = std::max(space_change, (dx[(k + 1) % 3] - dx[k]).norm());
-    }
-    const auto over = [](double change, double altitude) {
-      return change == 0 ? 0.0 : altitude > 0 ? change / altitude : INFINITY;
-    };
-    double e =
-        over(chart_change, smallest_altitude(u[tri[0]], u[tri[1]], u[tri[2]], chart_area(tri, u)));
+    const double chart_altitude =
+        smallest_altitude(u[tri[0]], u[tri[1]], u[tri[2]], chart_area(tri, u));
     const Vec3& n = surface.normals[t];
-    if (const double nn = n.norm(); nn > 0) {
-      const double facing = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]).dot(n) / nn;
-      e = std::max(e,
-                   over(space_change, smallest_altitude(x[tri[0]], x[tri[1]], x[tri[2]], facing)));
+    const double nn = n.norm();
+    const double space_altitude =
+        nn > 0 ? smallest_altitude(x[tri[0]], x[tri[1]], x[tri[2]],
+                                   (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]).dot(n) / nn)
+               : 0.0;
+    double e4 = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double a = over((du[(k + 1) % 3] - du[k]).norm(), chart_altitude);
+      const double b = nn > 0 ? over((dx[(k + 1) % 3] - dx[k]).norm(), space_altitude) : 0.0;
+      e4 += a * a * a * a + b * b * b * b;
     }
     for (Index v : tri)
-      if (const Index i = setup.movable_slot[v]; i >= 0) strain[i] = std::max(strain[i], e);
+      if (const Index i = setup.movable_slot[v]; i >= 0) strain4[i] += e4;
   }
-  std::vector<double> share(strain.size());
-  for (size_t i = 0; i < strain.size(); ++i) {
-    const double r = strain[i] / kStepReach;
-    share[i] = std::isfinite(r) ? 1 / std::sqrt(std::sqrt(1 + r * r * r * r)) : 0.0;
+  constexpr double reach4 = kStepReach * kStepReach * kStepReach * kStepReach;
+  std::vector<double> share(strain4.size());
+  for (size_t i = 0; i < strain4.size(); ++i) {
+    const double r4 = strain4[i] / reach4;
+    share[i] = std::isfinite(r4) ? 1 / std::sqrt(std::sqrt(1 + r4)) : 0.0;
   }
   return share;
 }

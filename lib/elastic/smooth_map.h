@@ -11,7 +11,7 @@
 // field of surface Jacobians (each chart node's the area-weighted mean of its triangles', blended
 // barycentrically), damped (Levenberg-Marquardt) and solved by a fixed number of conjugate
 // gradients from zero preconditioned by the bind's factor; a fold guard that scales each
-// vertex's step by a smoothstep of its triangles' area ratios in the chart and in 3D (a
+// vertex's step by a smooth function of its triangles' edge strains in the chart and in 3D (a
 // continuous barrier in place of Smith & Schaefer's fold roots). The slid vertex is written on
 // the frame's facets at its chart point.
 #pragma once

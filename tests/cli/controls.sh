@@ -319,11 +319,11 @@ check "a report over an input is refused (2)" fails_with 2 "would overwrite inpu
 check "--strength below 0 is a usage error (2)" fails_with 2 "strength" --strength -1 "${elbow[@]}" -o "$tmp/e11"
 
 # --- convergence (lib/elastic/README.md rule 10) -------------------------------------------------
-# The map's two passes leave elbow.0004 2.3% of its energy as first-order gain, elbow.0005 15.6%:
+# The map's two passes leave elbow.0004 4.6% of its energy as first-order gain, elbow.0005 17%:
 # at 1% both are not converged, at the default 5% elbow.0005 only.
 "$bin" -j 1 --convergence 0.01 --report "$tmp/c1.json" "${elbow[@]}" -o "$tmp/c1" 2>"$tmp/c1.log"
 check "a frame that did not converge is written, and its line and the summary say so" \
-  grep -q 'elbow.0004.obj: .*not converged: patch 0 (passes, first-order gain left 2\.[0-9]*%) -> ' "$tmp/c1.log"
+  grep -q 'elbow.0004.obj: .*not converged: patch 0 (passes, first-order gain left 4\.[0-9]*%) -> ' "$tmp/c1.log"
 check "... and the report" $py -c "
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -334,8 +334,9 @@ check "--require-converged fails the first such frame (5), naming it and its pat
   "data/elbow/frames/elbow.0002.obj: patch 0: did not converge (passes, first-order gain left 0.4" \
   -j 1 --require-converged --convergence 0.001 "${elbow[@]}" -o "$tmp/c2"
 check "... and writes nothing of it" test ! -e "$tmp/c2/elbow.0002.obj"
+# At 25% every frame converges (elbow.0005's gain left, measured with the curvature there: 20.3%).
 check "--require-converged passes where every frame converged" \
-  "$bin" -q --require-converged --convergence 0.2 "${elbow[@]}" -o "$tmp/c3"
+  "$bin" -q --require-converged --convergence 0.25 "${elbow[@]}" -o "$tmp/c3"
 check "--convergence is checked against its range (2)" fails_with 2 "convergence" --convergence 2 "${elbow[@]}" -o "$tmp/c4"
 
 finish controls

@@ -65,7 +65,7 @@ check "--window, the whole sequence: nothing said of its ends" bash -c "! grep -
 "$bin" -j 1 --window 4 --window-ends cycle "${win[@]}" data/elbow/frames/*.obj -o "$tmp/costly" \
   --report "$tmp/costly.json" 2>"$tmp/costly.txt"
 check "frames whose window costs ten points: counted on the summary line, with what to do" grep -qF \
-  "5 frames slid (1 not converged; 1 whose --window mean costs ten points of energy or more, 'X% without the window' on their lines: try a smaller --window, --window-ends one-sided if the shot is not a loop, or no window for separate poses)" "$tmp/costly.txt"
+  "5 frames slid (2 not converged; 1 whose --window mean costs ten points of energy or more, 'X% without the window' on their lines: try a smaller --window, --window-ends one-sided if the shot is not a loop, or no window for separate poses)" "$tmp/costly.txt"
 check "... as many as the lines that say so" [ "$(grep -c 'without the window (its frames' "$tmp/costly.txt")" -eq 1 ]
 check "... and in the report's totals" $py - "$tmp/costly.json" <<'PY'
 import json, sys
