@@ -94,6 +94,16 @@ void refuse_mesh_output(const RunOptions& o) {
                     "shot.pc2)");
 }
 
+// An -o named as a cache of the other format (`-o shot.mdd` for a PC2 run) is refused, not made
+// a folder of that name. `writes`: why the run writes `format`.
+void refuse_other_cache_output(const RunOptions& o, const std::string& format,
+                               const std::string& writes) {
+  const std::string named = cache_format_named_by(o.output);
+  if (!named.empty() && named != format)
+    throw Error(ErrorKind::Usage,
+                "-o " + o.output + ": names a " + named + " cache, but " + writes);
+}
+
 // Indices of the frames that --frames selects, in list order, by the frame number in each
 // output's file name (an OBJ frame's own name; a rig frame's <character>.<frame>).
 std::vector<size_t> chosen_frames(const std::vector<FrameRange>& ranges,
@@ -233,6 +243,8 @@ FramePlan plan_frames(const RunOptions& o) {
   FramePlan plan;
   plan.folder = o.output;
   if (is_cache_format(o.format)) {
+    refuse_other_cache_output(
+        o, o.format, "--format " + o.format + " writes a " + o.format + " cache: give one of them");
     plan.whole = sequence_cache_header(o);
     plan.chosen = chosen_frames(ranges, o.frames, o.frames, o.frame_ranges);
     const std::string extension = "." + o.format;
@@ -276,6 +288,8 @@ FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& n
   }
   plan.chosen = chosen_frames(ranges, plan.outputs, names, o.frame_ranges);
   if (is_cache_format(format)) {
+    refuse_other_cache_output(
+        o, format, "--format " + format + " writes a " + format + " cache: give one of them");
     // The clip's frames as samples of one cache: frame numbers are the sample indices.
     CacheHeader whole;
     whole.format = format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd;
@@ -307,6 +321,10 @@ FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
                                         " cache; a cache is written in its own format "
                                         "(PC2 frames and MDD times do not convert without a "
                                         "frame rate)");
+    refuse_other_cache_output(o, own,
+                              o.frames.front() + " is a " + own +
+                                  " cache, written in its own format (PC2 frames and MDD times "
+                                  "do not convert without a frame rate)");
     const fs::path input(o.frames.front());
     const std::string extension = input.extension().string();
     const CacheTarget target = cache_target(o.output, input.stem().string(), extension);

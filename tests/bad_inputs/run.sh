@@ -372,6 +372,8 @@ cache shot.pc2 ''
 cache shot.mdd ''
 expect cache_pc2_valid 0 "2 frames slid" --patch $P $B "$tmp/shot.pc2"
 expect cache_mdd_valid 0 "2 frames slid" --patch $P $B "$tmp/shot.mdd"
+expect cache_output_other_format 2 "x.mdd: names a mdd cache, but $tmp/shot.pc2 is a pc2 cache" -o "$tmp/x.mdd" --patch $P $B "$tmp/shot.pc2"
+[ -e "$tmp/x.mdd" ] && fail "cache_output_other_format: made $tmp/x.mdd"
 : >"$tmp/empty.pc2"
 expect cache_empty 3 "empty.pc2: the file is empty (0 bytes)" --patch $P $B "$tmp/empty.pc2"
 cache magic.pc2 'b[0:11] = b"POINTCACHE3"'

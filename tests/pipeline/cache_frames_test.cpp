@@ -199,6 +199,14 @@ TEST(CacheFrames, Refusals) {
   EXPECT_TRUE(refusal(o, ErrorKind::Usage)
                   .starts_with("--format mdd: " + dir / "elbow.pc2" + " is a pc2 cache"));
   o.format = "";
+  // -o named as a cache of the other format: refused, not made a folder of that name.
+  o.output = dir / "shot.mdd";
+  EXPECT_EQ(refusal(o, ErrorKind::Usage),
+            "-o " + dir / "shot.mdd" + ": names a mdd cache, but " + dir / "elbow.pc2" +
+                " is a pc2 cache, written in its own format (PC2 frames and MDD times do not "
+                "convert without a frame rate)");
+  EXPECT_FALSE(std::filesystem::exists(dir / "shot.mdd"));
+  o.output = dir / "out";
   o.frames.push_back(elbow("frames/elbow.0001.obj"));
   EXPECT_TRUE(refusal(o, ErrorKind::Usage).starts_with("a point cache is a whole shot"));
   o.frames = {dir / "elbow.pc2"};
