@@ -179,7 +179,8 @@ std::vector<double> step_shares(const ElasticSetup& setup, const FrameSurface& s
                                 const MapState& state, const Positions2& d,
                                 const std::vector<Mat32>& T) {
   const Chart& chart = setup.chart;
-  std::vector<double> strain4(setup.movable.size(), 0.0);  // per vertex: sum of (x reach)^4
+  // Per movable vertex the sum of its triangles' edge strains to the fourth power (over no reach).
+  std::vector<double> strain4(setup.movable.size(), 0.0);
   const auto& u = state.node_uv;
   const auto& x = state.x;
   const auto over = [](double change, double altitude) {

@@ -94,6 +94,10 @@ void refuse_mesh_output(const RunOptions& o) {
                     "shot.pc2)");
 }
 
+// Why a point cache is written in its own format, never converted.
+constexpr const char* kCacheKeepsItsFormat =
+    "(PC2 frames and MDD times do not convert without a frame rate)";
+
 // An -o named as a cache of the other format (`-o shot.mdd` for a PC2 run) is refused, not made
 // a folder of that name. `writes`: why the run writes `format`.
 void refuse_other_cache_output(const RunOptions& o, const std::string& format,
@@ -102,6 +106,12 @@ void refuse_other_cache_output(const RunOptions& o, const std::string& format,
   if (!named.empty() && named != format)
     throw Error(ErrorKind::Usage,
                 "-o " + o.output + ": names a " + named + " cache, but " + writes);
+}
+
+// refuse_other_cache_output for a run whose --format chose the cache.
+void refuse_other_cache_output(const RunOptions& o, const std::string& format) {
+  refuse_other_cache_output(
+      o, format, "--format " + format + " writes a " + format + " cache: give one of them");
 }
 
 // Indices of the frames that --frames selects, in list order, by the frame number in each
@@ -243,8 +253,7 @@ FramePlan plan_frames(const RunOptions& o) {
   FramePlan plan;
   plan.folder = o.output;
   if (is_cache_format(o.format)) {
-    refuse_other_cache_output(
-        o, o.format, "--format " + o.format + " writes a " + o.format + " cache: give one of them");
+    refuse_other_cache_output(o, o.format);
     plan.whole = sequence_cache_header(o);
     plan.chosen = chosen_frames(ranges, o.frames, o.frames, o.frame_ranges);
     const std::string extension = "." + o.format;
@@ -288,8 +297,7 @@ FramePlan plan_rig_frames(const RunOptions& o, const std::vector<std::string>& n
   }
   plan.chosen = chosen_frames(ranges, plan.outputs, names, o.frame_ranges);
   if (is_cache_format(format)) {
-    refuse_other_cache_output(
-        o, format, "--format " + format + " writes a " + format + " cache: give one of them");
+    refuse_other_cache_output(o, format);
     // The clip's frames as samples of one cache: frame numbers are the sample indices.
     CacheHeader whole;
     whole.format = format == "pc2" ? CacheFormat::Pc2 : CacheFormat::Mdd;
@@ -317,14 +325,11 @@ FramePlan plan_cache_frames(const RunOptions& o, const CacheHeader& cache,
   if (is_cache_format(format)) {
     if (format != own)
       throw Error(ErrorKind::Usage, "--format " + format + ": " + o.frames.front() + " is a " +
-                                        own +
-                                        " cache; a cache is written in its own format "
-                                        "(PC2 frames and MDD times do not convert without a "
-                                        "frame rate)");
+                                        own + " cache; a cache is written in its own format " +
+                                        kCacheKeepsItsFormat);
     refuse_other_cache_output(o, own,
                               o.frames.front() + " is a " + own +
-                                  " cache, written in its own format (PC2 frames and MDD times "
-                                  "do not convert without a frame rate)");
+                                  " cache, written in its own format " + kCacheKeepsItsFormat);
     const fs::path input(o.frames.front());
     const std::string extension = input.extension().string();
     const CacheTarget target = cache_target(o.output, input.stem().string(), extension);
